@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian packages gacompare needs, only those missing. Safe to re-run.
+# Uses sudo when not root. Debian 12 (bookworm) package names.
+set -euo pipefail
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev            # Eigen 3.4: traditional backend
+  libbullet-dev            # Bullet, double precision build (pkg-config bullet-float64)
+  libfcl-dev libccd-dev    # FCL 0.7 + libccd: collision referee
+  libgtest-dev libgmock-dev
+  libbenchmark-dev         # Google Benchmark
+  nlohmann-json3-dev       # scene files, results.json
+  libcli11-dev             # command line
+  libssl-dev               # SHA-256 of scene files (libcrypto)
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present" >&2
+  exit 0
+fi
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+echo "install-deps: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
