@@ -1,0 +1,122 @@
+#pragma once
+// The scene model: a read-only description of what to simulate, loaded once
+// from data/scenes/*.json. Keys and units are the public contract of
+// ../shared/DESIGN.md and issue #2; every backend builds its own state from it.
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace gacompare::core {
+
+using Vec3 = Eigen::Vector3d;
+
+enum class SolverMethod { euler, rk4, rk4_doubling, cash_karp45, symplectic_euler, velocity_verlet };
+std::string_view to_string(SolverMethod m);
+std::optional<SolverMethod> solver_method_from_string(std::string_view s);
+
+struct SolverSpec {
+  SolverMethod method = SolverMethod::rk4;
+  double dt = 1e-3;       // s: the step of fixed-step methods, the first try of adaptive ones
+  double abs_tol = 1e-9;  // adaptive methods: per-component absolute tolerance
+  double rel_tol = 1e-9;  // adaptive methods: per-component relative tolerance
+};
+
+// --- effects (Table 2 of the report, plus collisions) ---------------------------
+struct Gravity { Vec3 g{0, 0, -9.81}; };                 // F = m g
+struct LinearDrag { double k = 0; };                      // F = -k v
+struct QuadraticDrag { double k = 0; };                   // F = -k |v| v
+struct AttractionBetweenParticles { double C = 0; };      // F = C m1 m2 / r^2, towards each other
+struct AttractionToPoint { Vec3 point{0, 0, 0}; double D = 0; };  // F = D m / r^2, towards point
+struct Collisions { double restitution = 0.5; double penetration_tolerance = 1e-4; };
+using Effect = std::variant<Gravity, LinearDrag, QuadraticDrag, AttractionBetweenParticles,
+                            AttractionToPoint, Collisions>;
+std::string_view effect_name(const Effect& e);  // the scene's "type" string
+
+struct Particle {
+  std::string name;
+  double mass = 1;
+  Vec3 position{0, 0, 0};
+  Vec3 velocity{0, 0, 0};
+  bool pinned = false;
+};
+
+// --- constraints (§2.1.2) ---------------------------------------------------------
+struct DistanceToPoint { std::string particle; Vec3 point{0, 0, 0}; double length = 0; };
+struct DistanceBetween { std::string a, b; double length = 0; };
+using Constraint = std::variant<DistanceToPoint, DistanceBetween>;
+
+// --- shapes --------------------------------------------------------------------------
+struct BoxShape { Vec3 size{1, 1, 1}; };                   // full side lengths
+struct TetrahedronShape { double edge = 1; };
+struct PyramidShape { double base = 1; double height = 1; };  // square base, apex above
+struct OctahedronShape { double radius = 1; };             // centre to vertex
+struct IcosahedronShape { double radius = 1; };            // centre to vertex
+struct HullShape { std::vector<Vec3> points; };
+struct MeshShape { std::filesystem::path file; };          // resolved against the scene file's folder
+using Shape = std::variant<BoxShape, TetrahedronShape, PyramidShape, OctahedronShape,
+                           IcosahedronShape, HullShape, MeshShape>;
+
+struct Body {
+  std::string name;
+  Shape shape;
+  std::optional<double> mass;     // exactly one of mass and density is set
+  std::optional<double> density;
+  Vec3 position{0, 0, 0};
+  Eigen::Vector4d orientation{1, 0, 0, 0};  // unit quaternion [w,x,y,z], body -> world
+  Vec3 velocity{0, 0, 0};
+  Vec3 angular_velocity{0, 0, 0};           // world frame, rad/s
+  bool is_static = false;
+};
+
+// --- generators: expanded into particles and constraints by the dynamics issue --------
+struct ParticleNet {          // the hanging net of fig. 4
+  std::string name;           // particles are named name[r][c]
+  int rows = 2, cols = 2;
+  double spacing = 0.1, mass = 1;
+  Vec3 origin{0, 0, 0};
+  std::vector<std::pair<int, int>> pinned;  // [row, col] pairs
+};
+struct ParticleChain {
+  std::string name;           // particles are named name[i]
+  int count = 2;
+  double spacing = 0.1, mass = 1;
+  Vec3 origin{0, 0, 0};
+  Vec3 direction{1, 0, 0};
+  std::vector<int> pinned;
+};
+using Generator = std::variant<ParticleNet, ParticleChain>;
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::filesystem::path file;  // where it was loaded from ("" when built in code)
+  std::string sha256;          // of the file's bytes
+  double duration = 1;         // s
+  double output_every = 0.01;  // s
+  SolverSpec solver;
+  std::vector<Effect> effects;  // ONLY these are simulated
+  std::vector<Particle> particles;
+  std::vector<Constraint> constraints;
+  std::vector<Body> bodies;
+  std::vector<Generator> generators;
+
+  template <class T> const T* find_effect() const {
+    for (const auto& e : effects)
+      if (auto* p = std::get_if<T>(&e)) return p;
+    return nullptr;
+  }
+};
+
+// Loads and validates a scene. Throws gacompare::Error (ErrorKind::input) with one
+// line "FILE: JSON/PATH: what was expected" on malformed JSON, an unknown key, a
+// wrong type, a missing field, a value out of range, a duplicate name or an
+// unknown reference.
+Scene load_scene(const std::filesystem::path& file);
+// Same, from text already in memory; `file` is used in messages and to resolve meshes.
+Scene parse_scene(const std::string& text, const std::filesystem::path& file);
+
+}  // namespace gacompare::core
