@@ -262,6 +262,20 @@ constexpr Multivector<A, S> operator/(Multivector<A, S> a, double s) {
   return a;
 }
 
+// In-place forms, for a right-hand side whose blades the left-hand side holds.
+template <class A, BladeSet S, BladeSet S2>
+  requires((S2 & ~S) == 0)
+constexpr Multivector<A, S>& operator+=(Multivector<A, S>& a, const Multivector<A, S2>& b) {
+  for (int k = 0; k < Multivector<A, S2>::size; ++k) a.c[Multivector<A, S>::slot(Multivector<A, S2>::blade_at(k))] += b.c[k];
+  return a;
+}
+template <class A, BladeSet S, BladeSet S2>
+  requires((S2 & ~S) == 0)
+constexpr Multivector<A, S>& operator-=(Multivector<A, S>& a, const Multivector<A, S2>& b) {
+  for (int k = 0; k < Multivector<A, S2>::size; ++k) a.c[Multivector<A, S>::slot(Multivector<A, S2>::blade_at(k))] -= b.c[k];
+  return a;
+}
+
 // A scalar as a multivector, to add to products: 1 + B.
 template <class A>
 constexpr Multivector<A, 1> scalar(double s) { return {{s}}; }

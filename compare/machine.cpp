@@ -1,0 +1,65 @@
+#include "compare/machine.hpp"
+
+#include "core/error.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+
+#ifndef GACOMPARE_VERSION
+#define GACOMPARE_VERSION "unknown"
+#endif
+#ifndef GACOMPARE_BUILD_TYPE
+#define GACOMPARE_BUILD_TYPE "unknown"
+#endif
+
+namespace gacompare::compare {
+
+std::string tool_version() { return GACOMPARE_VERSION; }
+
+MachineInfo machine_info() {
+  MachineInfo m;
+  m.cpu = "unknown";
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) m.cpu = line.substr(line.find_first_not_of(' ', colon + 1));
+      break;
+    }
+  }
+#if defined(__clang__)
+  m.compiler = "clang " __clang_version__;
+#elif defined(__GNUC__)
+  m.compiler = "gcc " __VERSION__;
+#else
+  m.compiler = "unknown";
+#endif
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  m.date = buf;
+  m.build_type = GACOMPARE_BUILD_TYPE;
+  return m;
+}
+
+void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);
+  if (ec) throw run_error(path.parent_path().string() + ": cannot create folder: " + ec.message());
+  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp");
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) throw run_error(tmp.string() + ": cannot write");
+  }
+  fs::rename(tmp, path, ec);
+  if (ec) throw run_error(path.string() + ": cannot rename from " + tmp.string() + ": " + ec.message());
+}
+
+}  // namespace gacompare::compare

@@ -1,0 +1,192 @@
+#include "compare/report.hpp"
+
+#include "compare/results.hpp"
+#include "compare/stats.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace gacompare::compare {
+
+namespace {
+using core::Stage;
+
+std::string fmt(const char* f, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, x);
+  return buf;
+}
+
+std::vector<double> stage_seconds(const BackendResult& b, Stage s) {
+  std::vector<double> v;
+  for (const auto& p : b.profiles) v.push_back(p[s].seconds);
+  return v;
+}
+std::vector<double> total_seconds(const BackendResult& b) {
+  std::vector<double> v;
+  for (const auto& p : b.profiles) v.push_back(p.total_seconds());
+  return v;
+}
+
+// cga/traditional over paired repeats (repeat i of one against repeat i of the
+// other, run back to back): the median ratio and its min–max, like hyperfine's
+// "Relative ± σ" but robust to the odd slow repeat.
+Spread paired_ratio(const std::vector<double>& num, const std::vector<double>& den) {
+  std::vector<double> r;
+  for (std::size_t i = 0; i < std::min(num.size(), den.size()); ++i)
+    if (den[i] > 0) r.push_back(num[i] / den[i]);
+  return spread(r);
+}
+
+std::string time_cell(const std::vector<double>& secs) {
+  const Spread s = spread(secs);
+  return format_seconds(s.median) + " (" + format_seconds(s.min) + "–" + format_seconds(s.max) + ")";
+}
+std::string ratio_cell(const Spread& s) {
+  return fmt("%.2f", s.median) + " (" + fmt("%.2f", s.min) + "–" + fmt("%.2f", s.max) + ")";
+}
+
+const BackendResult* find(const SceneResult& r, std::string_view name) {
+  for (const auto& b : r.backends)
+    if (b.run.backend == name) return &b;
+  return nullptr;
+}
+
+std::string header(const MachineInfo& m, int repeats) {
+  std::ostringstream o;
+  o << "gacompare " << tool_version() << " (" << m.build_type << ", " << m.compiler << ") on " << m.cpu << ", "
+    << m.date << ". Times are medians over " << repeats
+    << " repeats, backends interleaved, with min–max in brackets; ratios are cga/traditional over paired repeats.\n";
+  return o.str();
+}
+}  // namespace
+
+std::string format_seconds(double s) {
+  if (s == 0) return "0";
+  const double a = std::abs(s);
+  if (a < 1e-6) return fmt("%.3g ns", s * 1e9);
+  if (a < 1e-3) return fmt("%.3g µs", s * 1e6);
+  if (a < 1) return fmt("%.3g ms", s * 1e3);
+  return fmt("%.3g s", s);
+}
+
+std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, int repeats) {
+  std::ostringstream o;
+  o << "# " << r.scene.name << "\n\n";
+  if (!r.scene.description.empty()) o << r.scene.description << "\n\n";
+  o << "Scene `" << r.scene.file.filename().string() << "` (sha256 " << r.scene.sha256.substr(0, 12) << "…), "
+    << r.scene.duration << " s simulated, solver `" << core::to_string(r.scene.solver.method) << "`.\n"
+    << header(machine, repeats) << "\n";
+
+  for (const auto& b : r.backends)
+    if (b.run.error) o << "**" << b.run.backend << " stopped early:** " << *b.run.error << "\n\n";
+
+  o << "## Stage times\n\n| stage |";
+  for (const auto& b : r.backends) o << " " << b.run.backend << " | calls | share |";
+  const BackendResult* trad = find(r, "traditional");
+  const BackendResult* cga = find(r, "cga");
+  const bool ratio = trad && cga;
+  if (ratio) o << " cga / traditional |";
+  o << "\n|---|";
+  for (std::size_t i = 0; i < r.backends.size(); ++i) o << "---:|---:|---:|";
+  if (ratio) o << "---:|";
+  o << "\n";
+  for (int k = 0; k < core::kStageCount; ++k) {
+    const auto s = static_cast<Stage>(k);
+    bool any = false;
+    for (const auto& b : r.backends) any = any || b.run.profile.ran(s);
+    if (!any) continue;
+    o << "| `" << core::stage_name(s) << "` |";
+    for (const auto& b : r.backends) {
+      const double share = b.run.profile.total_seconds() > 0
+                               ? spread(stage_seconds(b, s)).median / spread(total_seconds(b)).median
+                               : 0;
+      o << " " << time_cell(stage_seconds(b, s)) << " | " << b.run.profile[s].calls << " | "
+        << fmt("%.0f%%", 100 * share) << " |";
+    }
+    if (ratio) o << " " << ratio_cell(paired_ratio(stage_seconds(*cga, s), stage_seconds(*trad, s))) << " |";
+    o << "\n";
+  }
+  o << "| **all stages** |";
+  for (const auto& b : r.backends) o << " " << time_cell(total_seconds(b)) << " | | 100% |";
+  if (ratio) o << " " << ratio_cell(paired_ratio(total_seconds(*cga), total_seconds(*trad))) << " |";
+  o << "\n\n";
+
+  o << "## Solver and invariants\n\n| | ";
+  for (const auto& b : r.backends) o << b.run.backend << " | ";
+  o << "\n|---|";
+  for (std::size_t i = 0; i < r.backends.size(); ++i) o << "---:|";
+  o << "\n";
+  auto row = [&](const char* name, auto value) {
+    o << "| " << name << " |";
+    for (const auto& b : r.backends) o << " " << value(b) << " |";
+    o << "\n";
+  };
+  row("steps accepted", [](const BackendResult& b) { return std::to_string(b.run.solver.steps_accepted); });
+  row("steps rejected", [](const BackendResult& b) { return std::to_string(b.run.solver.steps_rejected); });
+  row("derivative evaluations",
+      [](const BackendResult& b) { return std::to_string(b.run.solver.derivative_evaluations); });
+  row("smallest / largest step", [](const BackendResult& b) {
+    return b.run.solver.steps_accepted ? fmt("%.3g", b.run.solver.min_step) + " / " + fmt("%.3g", b.run.solver.max_step)
+                                       : std::string("–");
+  });
+  row("largest relative energy change, max ΔE / E(0)", [](const BackendResult& b) { return fmt("%.3e", energy_drift(b.run)); });
+  row("samples", [](const BackendResult& b) { return std::to_string(b.run.samples.size()); });
+  row("repeats bit-identical", [](const BackendResult& b) { return std::string(b.deterministic ? "yes" : "**no**"); });
+  if (r.backends.size() > 1)
+    o << "\nLargest distance between the backends' particle positions over all samples: "
+      << fmt("%.3e", max_divergence(r)) << " m.\n";
+  return o.str();
+}
+
+std::string stage_csv(const std::vector<SceneResult>& results) {
+  std::ostringstream o;
+  o << "scene,backend,stage,median_s,min_s,max_s,calls\n";
+  for (const auto& r : results)
+    for (const auto& b : r.backends)
+      for (int k = 0; k < core::kStageCount; ++k) {
+        const auto s = static_cast<Stage>(k);
+        if (!b.run.profile.ran(s)) continue;
+        const Spread sp = spread(stage_seconds(b, s));
+        o << r.scene.name << "," << b.run.backend << "," << core::stage_name(s) << "," << fmt("%.9g", sp.median) << ","
+          << fmt("%.9g", sp.min) << "," << fmt("%.9g", sp.max) << "," << b.run.profile[s].calls << "\n";
+      }
+  return o.str();
+}
+
+std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats) {
+  std::ostringstream o;
+  o << "# gacompare: " << results.size() << " scenes\n\n" << header(machine, repeats) << "\n";
+  o << "| scene | traditional | cga | cga / traditional | max divergence (m) | energy drift trad / cga |\n"
+    << "|---|---:|---:|---:|---:|---:|\n";
+  for (const auto& r : results) {
+    const BackendResult* trad = find(r, "traditional");
+    const BackendResult* cga = find(r, "cga");
+    o << "| [" << r.scene.name << "](" << r.scene.name << "/report.md) | "
+      << (trad ? time_cell(total_seconds(*trad)) : "–") << " | " << (cga ? time_cell(total_seconds(*cga)) : "–") << " | "
+      << (trad && cga ? ratio_cell(paired_ratio(total_seconds(*cga), total_seconds(*trad))) : "–") << " | "
+      << fmt("%.2e", max_divergence(r)) << " | "
+      << (trad ? fmt("%.2e", energy_drift(trad->run)) : "–") << " / " << (cga ? fmt("%.2e", energy_drift(cga->run)) : "–")
+      << " |\n";
+  }
+  return o.str();
+}
+
+void write_reports(const std::filesystem::path& dir, const std::vector<SceneResult>& results,
+                   const MachineInfo& machine, int repeats) {
+  auto write_scene = [&](const std::filesystem::path& d, const SceneResult& r) {
+    write_file_atomically(d / "results.json", results_json(r, machine, repeats).dump(1) + "\n");
+    write_file_atomically(d / "stages.csv", stage_csv({r}));
+    write_file_atomically(d / "report.md", scene_report_md(r, machine, repeats));
+  };
+  if (results.size() == 1) {
+    write_scene(dir, results.front());
+    return;
+  }
+  for (const auto& r : results) write_scene(dir / r.scene.name, r);
+  write_file_atomically(dir / "stages.csv", stage_csv(results));
+  write_file_atomically(dir / "report.md", summary_report_md(results, machine, repeats));
+}
+
+}  // namespace gacompare::compare

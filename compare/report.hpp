@@ -1,0 +1,30 @@
+#pragma once
+// report.md (tables readable on GitHub) and one CSV per table.
+#include "compare/machine.hpp"
+#include "compare/runner.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gacompare::compare {
+
+// Per-stage timing (median and min–max over the repeats, calls, share of the
+// total, cga/traditional ratio over paired repeats), solver counters, invariants
+// and the divergence between backends, for one scene.
+std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, int repeats);
+// The stage table as CSV: scene,backend,stage,median_s,min_s,max_s,calls.
+std::string stage_csv(const std::vector<SceneResult>& results);
+// One line per scene: total time per backend, cga/traditional ratio, divergence.
+std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats);
+
+// Writes results.json, report.md and stages.csv for one scene into `dir`, or, for
+// several, one such folder per scene under `dir` plus dir/report.md and
+// dir/stages.csv summarising them. Every file is written atomically.
+void write_reports(const std::filesystem::path& dir, const std::vector<SceneResult>& results,
+                   const MachineInfo& machine, int repeats);
+
+// A time in the unit that suits it: "812 ns", "3.41 µs", "12.5 ms", "2.04 s".
+std::string format_seconds(double s);
+
+}  // namespace gacompare::compare

@@ -1,0 +1,36 @@
+#include "core/invariants.hpp"
+
+#include <Eigen/Geometry>
+
+#include <variant>
+
+namespace gacompare::core {
+
+void fill_invariants(const Scene& scene, Sample& s) {
+  s.kinetic = s.potential = 0;
+  s.linear_momentum.setZero();
+  s.angular_momentum.setZero();
+  const auto& ps = scene.particles;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const double m = ps[i].mass;
+    const Vec3& x = s.particles[i].position;
+    const Vec3& v = s.particles[i].velocity;
+    s.kinetic += 0.5 * m * v.squaredNorm();
+    s.linear_momentum += m * v;
+    s.angular_momentum += x.cross(m * v);
+  }
+  for (const auto& e : scene.effects) {
+    if (const auto* g = std::get_if<Gravity>(&e)) {
+      for (std::size_t i = 0; i < ps.size(); ++i) s.potential -= ps[i].mass * g->g.dot(s.particles[i].position);
+    } else if (const auto* a = std::get_if<AttractionToPoint>(&e)) {
+      for (std::size_t i = 0; i < ps.size(); ++i)
+        s.potential -= a->D * ps[i].mass / (s.particles[i].position - a->point).norm();
+    } else if (const auto* c = std::get_if<AttractionBetweenParticles>(&e)) {
+      for (std::size_t i = 0; i < ps.size(); ++i)
+        for (std::size_t j = i + 1; j < ps.size(); ++j)
+          s.potential -= c->C * ps[i].mass * ps[j].mass / (s.particles[i].position - s.particles[j].position).norm();
+    }
+  }
+}
+
+}  // namespace gacompare::core

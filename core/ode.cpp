@@ -1,0 +1,43 @@
+#include "core/ode.hpp"
+
+namespace gacompare::core {
+
+bool is_adaptive(SolverMethod m) {
+  return m == SolverMethod::rk4_doubling || m == SolverMethod::cash_karp45;
+}
+
+OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n)
+    : spec_(spec), h_(spec.dt),
+      k1_(n), k2_(n), k3_(n), k4_(n), k5_(n), k6_(n), tmp_(n), out_(n), half_(n), err_(n) {
+  switch (spec.method) {
+    case SolverMethod::euler:
+    case SolverMethod::rk4:
+    case SolverMethod::rk4_doubling:
+    case SolverMethod::cash_karp45:
+      break;
+    case SolverMethod::symplectic_euler:
+    case SolverMethod::velocity_verlet:
+      throw input_error("solver.method '" + std::string(to_string(spec.method)) +
+                        "' needs the position/velocity split of issue #4; it is not implemented yet");
+  }
+}
+
+double OdeSolver::error_ratio(const std::vector<double>& y, const std::vector<double>& ynew,
+                              const std::vector<double>& err) const {
+  double worst = 0;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    const double scale = spec_.abs_tol + spec_.rel_tol * std::max(std::abs(y[i]), std::abs(ynew[i]));
+    const double r = std::abs(err[i]) / scale;
+    if (std::isnan(r)) return r;  // a non-finite state rejects the step
+    worst = std::max(worst, r);
+  }
+  return worst;
+}
+
+void OdeSolver::record(double h) {
+  ++stats_.steps_accepted;
+  stats_.min_step = std::min(stats_.min_step, h);
+  stats_.max_step = std::max(stats_.max_step, h);
+}
+
+}  // namespace gacompare::core

@@ -1,0 +1,46 @@
+#pragma once
+// What a simulation run produces, backend-neutral: samples in world terms, the
+// stage profile, solver statistics and counters. results.json is written from it.
+#include "core/ode.hpp"
+#include "core/scene.hpp"
+#include "core/stage.hpp"
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gacompare::core {
+
+struct ParticleSample {
+  Vec3 position{0, 0, 0};
+  Vec3 velocity{0, 0, 0};
+};
+
+struct BodySample {
+  Vec3 position{0, 0, 0};
+  Eigen::Vector4d orientation{1, 0, 0, 0};  // [w,x,y,z], body -> world
+  Vec3 velocity{0, 0, 0};
+  Vec3 angular_velocity{0, 0, 0};           // world frame
+};
+
+struct Sample {
+  double t = 0;
+  std::vector<ParticleSample> particles;  // in scene order
+  std::vector<BodySample> bodies;         // in scene order
+  double kinetic = 0, potential = 0;
+  Vec3 linear_momentum{0, 0, 0};
+  Vec3 angular_momentum{0, 0, 0};  // about the origin, world frame
+};
+
+struct Run {
+  std::string backend;
+  std::vector<Sample> samples;
+  Profile profile;
+  SolverStats solver;
+  std::map<std::string, std::uint64_t> counters;
+  double wall_seconds = 0;          // whole run, start to last sample
+  std::optional<std::string> error; // set when the run stopped early; samples so far are kept
+};
+
+}  // namespace gacompare::core

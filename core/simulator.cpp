@@ -1,0 +1,36 @@
+#include "core/simulator.hpp"
+
+#include <cmath>
+
+namespace gacompare::core {
+
+std::string first_nonfinite(std::span<const double> y, std::size_t stride, const std::vector<std::string>& names,
+                            std::string_view what) {
+  for (std::size_t k = 0; k < y.size(); ++k)
+    if (!std::isfinite(y[k])) return std::string(what) + " '" + names[k / stride] + "'";
+  return "";
+}
+
+void check_implemented(const Scene& scene) {
+  auto refuse = [&](const std::string& what, int issue) {
+    throw input_error(scene.file.string() + ": " + what + " cannot be simulated yet (issue #" + std::to_string(issue) + ")");
+  };
+  if (!scene.constraints.empty()) refuse("/constraints", 4);
+  if (!scene.generators.empty()) refuse("/generators", 4);
+  if (!scene.bodies.empty()) refuse("/bodies", 5);
+  if (scene.find_effect<Collisions>()) refuse("the 'collisions' effect", 6);
+  if (scene.particles.empty()) throw input_error(scene.file.string() + ": the scene has nothing to simulate (no particles)");
+}
+
+std::vector<double> output_times(const Scene& scene) {
+  std::vector<double> times;
+  // k·every, not a running sum, so the sample times carry no accumulated rounding.
+  const auto n = static_cast<long long>(std::floor(scene.duration / scene.output_every * (1 + 1e-12)));
+  for (long long k = 0; k <= n; ++k) times.push_back(std::min(scene.duration, static_cast<double>(k) * scene.output_every));
+  if (scene.duration - times.back() > 1e-12 * scene.duration) times.push_back(scene.duration);
+  times.back() = std::min(times.back(), scene.duration);
+  if (times.size() >= 2 && times.back() == times[times.size() - 2]) times.pop_back();
+  return times;
+}
+
+}  // namespace gacompare::core

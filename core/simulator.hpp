@@ -1,0 +1,92 @@
+#pragma once
+// The simulator loop, a template over a backend (DESIGN.md "Data flow"): no
+// virtual call sits inside a per-particle or per-vertex loop, so timings compare
+// the mathematics, not the dispatch. Each backend packs its own state into a flat
+// vector of doubles; the loop integrates it, samples it at the output times and
+// measures invariants from the backend-neutral sample.
+#include "core/invariants.hpp"
+#include "core/ode.hpp"
+#include "core/run.hpp"
+
+#include <chrono>
+#include <concepts>
+#include <span>
+#include <sstream>
+#include <string>
+
+namespace gacompare::core {
+
+template <class B>
+concept Backend = requires(const Scene& scene, const typename B::Model& m, double t, std::span<const double> y,
+                           std::span<double> out, Profile& profile, Sample& sample) {
+  { B::name } -> std::convertible_to<std::string_view>;
+  // Turns the scene into the backend's model once: only the listed effects get an
+  // object. Throws input_error for what the backend cannot simulate.
+  { B::build(scene) } -> std::same_as<typename B::Model>;
+  { B::state_size(m) } -> std::same_as<std::size_t>;
+  { B::initial_state(m, out) };
+  { B::derivative(m, t, y, out, profile) };
+  // Fills sample.particles / sample.bodies in world terms.
+  { B::observe(m, y, sample) };
+  // "" when every component is finite, else what holds the bad value: "particle 'bob'".
+  { B::first_nonfinite(m, y) } -> std::same_as<std::string>;
+};
+
+// "" when every component of y is finite; else "<what> '<name>'" for the first
+// non-finite one, where entity k owns components [k·stride, (k+1)·stride).
+std::string first_nonfinite(std::span<const double> y, std::size_t stride, const std::vector<std::string>& names,
+                            std::string_view what);
+
+// Throws input_error naming the first thing in the scene that no backend can
+// simulate yet (and the issue that adds it): never a silent partial simulation.
+void check_implemented(const Scene& scene);
+
+// The output times: every `every` seconds from 0, and `duration` itself.
+std::vector<double> output_times(const Scene& scene);
+
+template <Backend B>
+Run simulate(const Scene& scene) {
+  Run run;
+  run.backend = std::string(B::name);
+  check_implemented(scene);
+  const auto model = B::build(scene);
+  std::vector<double> y(B::state_size(model));
+  B::initial_state(model, y);
+  OdeSolver solver(scene.solver, y.size());
+  auto f = [&](double t, std::span<const double> yy, std::span<double> dy) {
+    B::derivative(model, t, yy, dy, run.profile);
+  };
+  auto record = [&](double t) {
+    Sample s;
+    s.t = t;
+    B::observe(model, y, s);
+    fill_invariants(scene, s);
+    run.samples.push_back(std::move(s));
+  };
+
+  const auto times = output_times(scene);
+  run.samples.reserve(times.size());
+  const auto start = std::chrono::steady_clock::now();
+  double t = 0;
+  record(t);
+  for (std::size_t k = 1; k < times.size(); ++k) {
+    try {
+      solver.advance(f, t, times[k], y, run.profile);
+    } catch (const Error& e) {
+      run.error = std::string(e.what());
+      break;
+    }
+    if (auto bad = B::first_nonfinite(model, y); !bad.empty()) {
+      std::ostringstream msg;
+      msg << "non-finite state: " << bad << ", stage integrate, between t=" << times[k - 1] << " and t=" << t;
+      run.error = msg.str();
+      break;
+    }
+    record(t);
+  }
+  run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.solver = solver.stats();
+  return run;
+}
+
+}  // namespace gacompare::core
