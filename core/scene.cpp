@@ -1,0 +1,710 @@
+// Scene loading and validation. Every rejection is one line
+//   FILE: /json/pointer: expected WHAT, got WHAT-WAS-THERE
+// (JSON syntax errors name the line and column instead of a pointer).
+#include "core/scene.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <span>
+#include <stdexcept>
+#include <system_error>
+
+#include "core/error.hpp"
+#include "core/sha256.hpp"
+
+namespace gacompare::core {
+
+std::string_view to_string(SolverMethod m) {
+  switch (m) {
+    case SolverMethod::euler:
+      return "euler";
+    case SolverMethod::rk4:
+      return "rk4";
+    case SolverMethod::rk4_doubling:
+      return "rk4_doubling";
+    case SolverMethod::cash_karp45:
+      return "cash_karp45";
+    case SolverMethod::symplectic_euler:
+      return "symplectic_euler";
+    case SolverMethod::velocity_verlet:
+      return "velocity_verlet";
+  }
+  return "unknown";
+}
+
+std::optional<SolverMethod> solver_method_from_string(std::string_view s) {
+  for (auto m : {SolverMethod::euler, SolverMethod::rk4, SolverMethod::rk4_doubling,
+                 SolverMethod::cash_karp45, SolverMethod::symplectic_euler, SolverMethod::velocity_verlet})
+    if (to_string(m) == s) return m;
+  return std::nullopt;
+}
+
+std::string_view effect_name(const Effect& e) {
+  static constexpr std::array<std::string_view, std::variant_size_v<Effect>> names = {
+      "gravity",   "linear_drag", "quadratic_drag", "attraction_between_particles", "attraction_to_point",
+      "collisions"};
+  return names[e.index()];
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using Names = std::span<const std::string_view>;
+
+constexpr int kMaxGenerated = 1'000'000;  // particles per generator: a guard against typos
+constexpr double kUnitTolerance = 1e-6;   // |norm - 1| allowed for an orientation
+
+// ---- message helpers ----------------------------------------------------------------
+std::string shorten(std::string s, std::size_t max) {
+  if (s.size() > max) s = s.substr(0, max) + "...";
+  return s;
+}
+
+// Messages are one line of valid UTF-8: control characters become spaces and bytes
+// that are not well-formed UTF-8 (from a file name or a JSON syntax error) become '?'.
+std::string one_line(const std::string& s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size();) {
+    const auto b = static_cast<unsigned char>(s[i]);
+    const std::size_t n = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xE ? 3 : (b >> 3) == 0x1E ? 4 : 0;
+    bool ok = n > 0 && i + n <= s.size();
+    for (std::size_t k = 1; ok && k < n; ++k) ok = (static_cast<unsigned char>(s[i + k]) >> 6) == 0x2;
+    if (!ok) {
+      out += '?';
+      ++i;
+    } else if (b < 0x20 || b == 0x7f) {
+      out += ' ';
+      ++i;
+    } else {
+      out.append(s, i, n);
+      i += n;
+    }
+  }
+  return out;
+}
+
+std::string quote(const std::string& s) {
+  return shorten(json(s).dump(-1, ' ', false, json::error_handler_t::replace), 80);
+}
+
+std::string fmt(double x) {  // shortest round-trip form: 1, 0.1, 1e+300
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return ec == std::errc() ? std::string(buffer, end) : json(x).dump();
+}
+
+std::string join(Names names, std::string_view sep = ", ") {
+  std::string out;
+  for (auto n : names) {
+    if (!out.empty()) out += sep;
+    out += n;
+  }
+  return out;
+}
+
+// A JSON-pointer reference token ("~" -> "~0", "/" -> "~1"), shortened and kept on one line.
+std::string token(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else if (static_cast<unsigned char>(c) >= 0x20)
+      out += c;
+    else {  // a control character: written as JSON would, "\n" or "\u001f"
+      const std::string escaped = json(std::string(1, c)).dump();
+      out += escaped.substr(1, escaped.size() - 2);
+    }
+  }
+  return shorten(out, 80);
+}
+
+// What was found, briefly: never a whole (possibly huge or deeply nested) document.
+std::string describe(const json* j) {
+  if (!j) return "nothing (the key is missing)";
+  switch (j->type()) {
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return j->get<bool>() ? "true" : "false";
+    case json::value_t::string:
+      return quote(j->get<std::string>());
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+    case json::value_t::number_float:
+      return j->dump();
+    case json::value_t::array:
+      if (j->size() <= 6 &&
+          std::none_of(j->begin(), j->end(), [](const json& e) { return e.is_structured(); }))
+        return shorten(j->dump(-1, ' ', false, json::error_handler_t::replace), 100);
+      return "an array of " + std::to_string(j->size()) + (j->size() == 1 ? " element" : " elements");
+    case json::value_t::object: {
+      if (j->empty()) return "{}";
+      std::string keys;
+      int n = 0;
+      for (const auto& [k, _] : j->items()) {
+        if (n++ == 5) {
+          keys += ", ...";
+          break;
+        }
+        keys += (keys.empty() ? "" : ", ") + quote(k);
+      }
+      return "an object with keys " + keys;
+    }
+    default:
+      return "an unsupported value";
+  }
+}
+
+struct Ctx {
+  std::string file;  // as given, for messages
+  fs::path dir;      // the scene file's folder: meshes are resolved against it
+};
+
+[[noreturn]] void fail_at(const Ctx& ctx, const std::string& path, const std::string& what) {
+  throw input_error(one_line(ctx.file + ": " + (path.empty() ? "/" : path) + ": " + what));
+}
+
+// A value at a JSON path; j == nullptr when a required key is missing.
+struct Val {
+  const Ctx& ctx;
+  const json* j;
+  std::string path;
+
+  [[noreturn]] void fail(const std::string& what) const { fail_at(ctx, path, what); }
+  [[noreturn]] void expected(const std::string& what) const {
+    fail("expected " + what + ", got " + describe(j));
+  }
+  Val at(std::size_t i) const { return {ctx, &(*j)[i], path + "/" + std::to_string(i)}; }
+  Val key(std::string_view k) const {
+    auto it = j->find(std::string(k));
+    return {ctx, it == j->end() ? nullptr : &*it, path + "/" + token(k)};
+  }
+};
+
+// An object whose keys must all be in `allowed`; unknown keys are rejected up front,
+// so a misspelt key is reported as such rather than as a missing one.
+class Obj {
+ public:
+  Obj(const Val& v, Names allowed, const std::string& what = "an object") : v_(v), allowed_(allowed) {
+    if (!v.j || !v.j->is_object()) v.expected(what);
+    for (const auto& [k, _] : v.j->items())
+      if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
+        fail_at(v.ctx, v.path + "/" + token(k),
+                "expected one of the keys " + join(allowed) + ", got the unknown key " + quote(k));
+  }
+  Val req(std::string_view k) const { return v_.key(check(k)); }  // missing -> j == nullptr
+  std::optional<Val> opt(std::string_view k) const {
+    Val v = v_.key(check(k));
+    return v.j ? std::optional<Val>(v) : std::nullopt;
+  }
+
+ private:
+  std::string_view check(std::string_view k) const {
+    if (std::find(allowed_.begin(), allowed_.end(), k) == allowed_.end())
+      throw std::logic_error("scene loader: key not declared: " + std::string(k));
+    return k;
+  }
+  Val v_;
+  Names allowed_;
+};
+
+// ---- typed getters --------------------------------------------------------------------
+enum class Range { any, positive, non_negative, unit };
+
+const char* range_text(Range r) {
+  switch (r) {
+    case Range::positive:
+      return "a number > 0";
+    case Range::non_negative:
+      return "a number >= 0";
+    case Range::unit:
+      return "a number in [0, 1]";
+    case Range::any:
+      break;
+  }
+  return "a finite number";
+}
+
+double number(const Val& v, Range r = Range::any) {
+  if (!v.j || !v.j->is_number()) v.expected(range_text(r));
+  const double x = v.j->get<double>();
+  const bool ok = std::isfinite(x) && (r != Range::positive || x > 0) &&
+                  (r != Range::non_negative || x >= 0) && (r != Range::unit || (x >= 0 && x <= 1));
+  if (!ok) v.expected(range_text(r));
+  return x;
+}
+
+int integer(const Val& v, int lo, int hi) {
+  const std::string what = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (!v.j || !v.j->is_number()) v.expected(what);
+  const double x = v.j->get<double>();  // exact for every integer that can pass the range check
+  if (!std::isfinite(x) || x != std::floor(x) || x < lo || x > hi) v.expected(what);
+  return static_cast<int>(x);
+}
+
+bool boolean(const Val& v) {
+  if (!v.j || !v.j->is_boolean()) v.expected("true or false");
+  return v.j->get<bool>();
+}
+
+std::string str(const Val& v, bool non_empty = true) {
+  const char* what = non_empty ? "a non-empty string" : "a string";
+  if (!v.j || !v.j->is_string() || (non_empty && v.j->get_ref<const std::string&>().empty()))
+    v.expected(what);
+  return v.j->get<std::string>();
+}
+
+// Names of particles, bodies and generators: '[' and ']' are reserved for the names
+// generators make (net[0][1], chain[3]), so a given name can never collide with one.
+std::string name(const Val& v) {
+  static const std::string what = "a non-empty name without '[', ']' or control characters";
+  if (!v.j || !v.j->is_string()) v.expected(what);
+  std::string s = v.j->get<std::string>();
+  if (s.empty() || std::any_of(s.begin(), s.end(), [](char c) {
+        return c == '[' || c == ']' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+      }))
+    v.expected(what);
+  return s;
+}
+
+std::string one_of(const Val& v, Names names) {
+  const std::string what = "one of " + join(names);
+  if (!v.j || !v.j->is_string()) v.expected(what);
+  std::string s = v.j->get<std::string>();
+  if (std::find(names.begin(), names.end(), s) == names.end()) v.expected(what);
+  return s;
+}
+
+void array_of(const Val& v, std::size_t n, const std::string& what) {
+  if (!v.j || !v.j->is_array() || v.j->size() != n) v.expected(what);
+}
+
+Vec3 vec3(const Val& v, Range r = Range::any) {
+  array_of(v, 3, std::string("an array of 3 numbers") + (r == Range::positive ? " > 0" : ""));
+  return {number(v.at(0), r), number(v.at(1), r), number(v.at(2), r)};
+}
+
+Eigen::Vector4d quaternion(const Val& v) {
+  array_of(v, 4, "a unit quaternion [w, x, y, z]");
+  Eigen::Vector4d q(number(v.at(0)), number(v.at(1)), number(v.at(2)), number(v.at(3)));
+  if (!(std::abs(q.norm() - 1) <= kUnitTolerance))
+    v.fail("expected a unit quaternion [w, x, y, z] (norm within 1e-6 of 1), got " + describe(v.j) +
+           " with norm " + fmt(q.norm()));
+  return q;
+}
+
+// Calls f(element) for each element of an optional array.
+template <class F>
+void each(const std::optional<Val>& v, F&& f) {
+  if (!v) return;
+  if (!v->j->is_array()) v->expected("an array");
+  for (std::size_t i = 0; i < v->j->size(); ++i) f(v->at(i));
+}
+
+// The "type" of a tagged object (effects, constraints, generators).
+std::string type_of(const Val& v, Names types) {
+  if (!v.j || !v.j->is_object()) v.expected("an object with a \"type\" (one of " + join(types) + ")");
+  return one_of(v.key("type"), types);
+}
+
+// True when the points span a solid (not all on one plane, line or point).
+bool spans_volume(const std::vector<Vec3>& p) {
+  std::size_t a = 0, b = 0, c = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if ((p[i] - p[0]).squaredNorm() > (p[a] - p[0]).squaredNorm()) a = i;
+  const Vec3 u = p[a] - p[0];
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (u.cross(p[i] - p[0]).squaredNorm() > u.cross(p[b] - p[0]).squaredNorm()) b = i;
+  const Vec3 n = u.cross(p[b] - p[0]);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (std::abs(n.dot(p[i] - p[0])) > std::abs(n.dot(p[c] - p[0]))) c = i;
+  const double scale = u.norm();
+  return scale > 0 && std::abs(n.dot(p[c] - p[0])) > 1e-12 * scale * scale * scale;
+}
+
+constexpr std::array<std::string_view, 6> kEffectTypes = {
+    "gravity",   "linear_drag", "quadratic_drag", "attraction_between_particles", "attraction_to_point",
+    "collisions"};
+constexpr std::array<std::string_view, 2> kConstraintTypes = {"distance_to_point", "distance"};
+constexpr std::array<std::string_view, 2> kGeneratorTypes = {"particle_net", "particle_chain"};
+constexpr std::array<std::string_view, 6> kMethods = {
+    "euler", "rk4", "rk4_doubling", "cash_karp45", "symplectic_euler", "velocity_verlet"};
+constexpr std::array<std::string_view, 7> kShapes = {"box",         "tetrahedron", "pyramid", "octahedron",
+                                                     "icosahedron", "hull",        "mesh"};
+
+template <std::size_t N>
+using Keys = std::array<std::string_view, N>;
+
+// ---- the loader ------------------------------------------------------------------------
+class Loader {
+ public:
+  explicit Loader(const Ctx& ctx) : ctx_(ctx) {}
+
+  Scene scene(const json& root) {
+    static constexpr Keys<10> keys = {"name",    "description", "duration",    "output", "solver",
+                                      "effects", "particles",   "constraints", "bodies", "generators"};
+    Obj o({ctx_, &root, ""}, keys);
+    Scene s;
+    s.name = str(o.req("name"));
+    if (auto d = o.opt("description")) s.description = str(*d, false);
+    s.duration = number(o.req("duration"), Range::positive);
+    static constexpr Keys<1> output_keys = {"every"};
+    const Obj out(o.req("output"), output_keys, "an object {\"every\": seconds}");
+    const Val every = out.req("every");
+    s.output_every = number(every, Range::positive);
+    if (s.output_every > s.duration) every.expected("a number > 0 and <= duration (" + fmt(s.duration) + ")");
+    s.solver = solver(o.req("solver"));
+    each(o.opt("effects"), [&](const Val& v) { s.effects.push_back(effect(v)); });
+    each(o.opt("particles"), [&](const Val& v) { s.particles.push_back(particle(v)); });
+    each(o.opt("bodies"), [&](const Val& v) { s.bodies.push_back(body(v)); });
+    each(o.opt("generators"), [&](const Val& v) { s.generators.push_back(generator(v)); });
+    each(o.opt("constraints"), [&](const Val& v) { s.constraints.push_back(constraint(v, s)); });
+    return s;
+  }
+
+ private:
+  SolverSpec solver(const Val& v) {
+    static constexpr Keys<4> keys = {"method", "dt", "abs_tol", "rel_tol"};
+    Obj o(v, keys);
+    SolverSpec spec;
+    spec.method = *solver_method_from_string(one_of(o.req("method"), kMethods));
+    if (auto x = o.opt("dt")) spec.dt = number(*x, Range::positive);
+    if (auto x = o.opt("abs_tol")) spec.abs_tol = number(*x, Range::positive);
+    if (auto x = o.opt("rel_tol")) spec.rel_tol = number(*x, Range::non_negative);
+    return spec;
+  }
+
+  Effect effect(const Val& v) {
+    const std::string type = type_of(v, kEffectTypes);
+    if (auto [it, fresh] = effect_paths_.emplace(type, v.path); !fresh)
+      v.key("type").fail("expected each effect type at most once, got a second " + quote(type) +
+                         " (the first is " + it->second + ")");
+    if (type == "gravity") {
+      static constexpr Keys<2> keys = {"type", "g"};
+      Obj o(v, keys);
+      Gravity g;
+      if (auto x = o.opt("g")) g.g = vec3(*x);
+      return g;
+    }
+    if (type == "linear_drag" || type == "quadratic_drag") {
+      static constexpr Keys<2> keys = {"type", "k"};
+      const double k = number(Obj(v, keys).req("k"), Range::non_negative);
+      return type == "linear_drag" ? Effect(LinearDrag{k}) : Effect(QuadraticDrag{k});
+    }
+    if (type == "attraction_between_particles") {
+      static constexpr Keys<2> keys = {"type", "C"};
+      return AttractionBetweenParticles{number(Obj(v, keys).req("C"))};
+    }
+    if (type == "attraction_to_point") {
+      static constexpr Keys<3> keys = {"type", "point", "D"};
+      Obj o(v, keys);
+      return AttractionToPoint{vec3(o.req("point")), number(o.req("D"))};
+    }
+    static constexpr Keys<3> keys = {"type", "restitution", "penetration_tolerance"};
+    Obj o(v, keys);
+    Collisions c;
+    if (auto x = o.opt("restitution")) c.restitution = number(*x, Range::unit);
+    if (auto x = o.opt("penetration_tolerance")) c.penetration_tolerance = number(*x, Range::positive);
+    return c;
+  }
+
+  Particle particle(const Val& v) {
+    static constexpr Keys<5> keys = {"name", "mass", "position", "velocity", "pinned"};
+    Obj o(v, keys);
+    Particle p;
+    p.name = claim(o.req("name"), "particle");
+    p.mass = number(o.req("mass"), Range::positive);
+    p.position = vec3(o.req("position"));
+    if (auto x = o.opt("velocity")) p.velocity = vec3(*x);
+    if (auto x = o.opt("pinned")) p.pinned = boolean(*x);
+    return p;
+  }
+
+  Body body(const Val& v) {
+    static constexpr Keys<9> keys = {"name",     "shape",       "mass",     "density",
+                                     "position", "orientation", "velocity", "angular_velocity",
+                                     "static"};
+    Obj o(v, keys);
+    Body b;
+    b.name = claim(o.req("name"), "body");
+    b.shape = shape(o.req("shape"));
+    const auto mass = o.opt("mass"), density = o.opt("density");
+    if (mass.has_value() == density.has_value())
+      v.fail(std::string("expected exactly one of \"mass\" and \"density\", got ") +
+             (mass ? "both" : "neither"));
+    if (mass) b.mass = number(*mass, Range::positive);
+    if (density) b.density = number(*density, Range::positive);
+    b.position = vec3(o.req("position"));
+    if (auto x = o.opt("orientation")) b.orientation = quaternion(*x);
+    if (auto x = o.opt("velocity")) b.velocity = vec3(*x);
+    if (auto x = o.opt("angular_velocity")) b.angular_velocity = vec3(*x);
+    if (auto x = o.opt("static")) b.is_static = boolean(*x);
+    return b;
+  }
+
+  Shape shape(const Val& v) {
+    const std::string what = "an object with exactly one key: " + join(kShapes);
+    if (!v.j || !v.j->is_object() || v.j->size() != 1) v.expected(what);
+    Obj o(v, kShapes, what);
+    if (auto x = o.opt("box")) return BoxShape{vec3(*x, Range::positive)};
+    if (auto x = o.opt("tetrahedron")) return TetrahedronShape{number(*x, Range::positive)};
+    if (auto x = o.opt("octahedron")) return OctahedronShape{number(*x, Range::positive)};
+    if (auto x = o.opt("icosahedron")) return IcosahedronShape{number(*x, Range::positive)};
+    if (auto x = o.opt("pyramid")) {
+      static constexpr Keys<2> keys = {"base", "height"};
+      Obj p(*x, keys, "an object {\"base\": b, \"height\": h}");
+      return PyramidShape{number(p.req("base"), Range::positive), number(p.req("height"), Range::positive)};
+    }
+    if (auto x = o.opt("hull")) {
+      const std::string hull_what = "an array of at least 4 points [x, y, z], not all in one plane";
+      if (!x->j->is_array() || x->j->size() < 4) x->expected(hull_what);
+      HullShape h;
+      for (std::size_t i = 0; i < x->j->size(); ++i) h.points.push_back(vec3(x->at(i)));
+      if (!spans_volume(h.points)) x->fail("expected " + hull_what + ", got points that span no volume");
+      return h;
+    }
+    const Val m = o.req("mesh");
+    const std::string rel = str(m);
+    const fs::path resolved = (ctx_.dir / fs::path(rel)).lexically_normal();
+    std::error_code ec;
+    if (!fs::is_regular_file(resolved, ec))
+      m.fail("expected the path of an existing mesh file, relative to the scene's folder, got " + quote(rel) +
+             " (resolved to " + quote(resolved.string()) + ", where there is no such file)");
+    return MeshShape{resolved};
+  }
+
+  Generator generator(const Val& v) {
+    if (type_of(v, kGeneratorTypes) == "particle_net") {
+      static constexpr Keys<8> keys = {"type", "name", "rows", "cols", "spacing", "mass", "origin", "pinned"};
+      Obj o(v, keys);
+      ParticleNet n;
+      n.name = claim(o.req("name"), "generator");
+      n.rows = integer(o.req("rows"), 1, kMaxGenerated);
+      n.cols = integer(o.req("cols"), 1, kMaxGenerated);
+      if (static_cast<long long>(n.rows) * n.cols > kMaxGenerated)
+        o.req("cols").fail("expected rows x cols <= " + std::to_string(kMaxGenerated) + ", got " +
+                           std::to_string(n.rows) + " x " + std::to_string(n.cols));
+      n.spacing = number(o.req("spacing"), Range::positive);
+      n.mass = number(o.req("mass"), Range::positive);
+      if (auto x = o.opt("origin")) n.origin = vec3(*x);
+      each(o.opt("pinned"), [&](const Val& pin) {
+        array_of(pin, 2, "[row, col]");
+        std::pair<int, int> rc{integer(pin.at(0), 0, n.rows - 1), integer(pin.at(1), 0, n.cols - 1)};
+        if (std::find(n.pinned.begin(), n.pinned.end(), rc) != n.pinned.end())
+          pin.fail("expected each pinned particle once, got " + describe(pin.j) + " again");
+        n.pinned.push_back(rc);
+      });
+      return n;
+    }
+    static constexpr Keys<8> keys = {"type", "name",   "count",     "spacing",
+                                     "mass", "origin", "direction", "pinned"};
+    Obj o(v, keys);
+    ParticleChain c;
+    c.name = claim(o.req("name"), "generator");
+    c.count = integer(o.req("count"), 2, kMaxGenerated);
+    c.spacing = number(o.req("spacing"), Range::positive);
+    c.mass = number(o.req("mass"), Range::positive);
+    if (auto x = o.opt("origin")) c.origin = vec3(*x);
+    if (auto x = o.opt("direction")) {
+      c.direction = vec3(*x);
+      if (!(c.direction.norm() > 0 && std::isfinite(c.direction.norm())))
+        x->expected("a direction [x, y, z] with a length > 0 (and finite)");
+    }
+    each(o.opt("pinned"), [&](const Val& pin) {
+      const int i = integer(pin, 0, c.count - 1);
+      if (std::find(c.pinned.begin(), c.pinned.end(), i) != c.pinned.end())
+        pin.fail("expected each pinned particle once, got " + std::to_string(i) + " again");
+      c.pinned.push_back(i);
+    });
+    return c;
+  }
+
+  Constraint constraint(const Val& v, const Scene& s) {
+    if (type_of(v, kConstraintTypes) == "distance_to_point") {
+      static constexpr Keys<4> keys = {"type", "particle", "point", "length"};
+      Obj o(v, keys);
+      DistanceToPoint d;
+      d.particle = particle_ref(o.req("particle"), s);
+      d.point = vec3(o.req("point"));
+      d.length = number(o.req("length"), Range::positive);
+      return d;
+    }
+    static constexpr Keys<3> keys = {"type", "particles", "length"};
+    Obj o(v, keys);
+    const Val pair = o.req("particles");
+    array_of(pair, 2, "two particle names [a, b]");
+    DistanceBetween d{particle_ref(pair.at(0), s), particle_ref(pair.at(1), s), 0};
+    if (d.a == d.b) pair.expected("two different particle names");
+    d.length = number(o.req("length"), Range::positive);
+    return d;
+  }
+
+  // Registers a particle, body or generator name; all three share one namespace.
+  std::string claim(const Val& v, const char* kind) {
+    std::string n = name(v);
+    if (auto [it, fresh] = names_.emplace(n, Named{kind, v.path}); !fresh)
+      v.fail("expected a name not used by another particle, body or generator, got " + quote(n) +
+             " (already the " + it->second.kind + " at " + it->second.path + ")");
+    return n;
+  }
+
+  // A particle given in "particles" or made by a generator (net[r][c], chain[i]).
+  std::string particle_ref(const Val& v, const Scene& s) const {
+    const std::string what = "the name of a particle (given, or generated such as net[0][1] or chain[2])";
+    if (!v.j || !v.j->is_string()) v.expected(what);
+    std::string n = v.j->get<std::string>();
+    if (auto it = names_.find(n); it != names_.end()) {
+      if (std::string_view(it->second.kind) == "particle") return n;
+      v.fail("expected " + what + ", got " + quote(n) + ", which names a " + it->second.kind);
+    }
+    if (!generated(n, s)) v.expected(what);
+    return n;
+  }
+
+  static bool generated(const std::string& n, const Scene& s) {
+    const auto open = n.find('[');
+    if (open == std::string::npos) return false;
+    const std::string base = n.substr(0, open);
+    std::vector<long> index;  // the bracketed indices: canonical decimal, at most 9 digits
+    for (std::size_t i = open; i < n.size();) {
+      const auto close = n.find(']', i);
+      if (n[i] != '[' || close == std::string::npos) return false;
+      const std::string digits = n.substr(i + 1, close - i - 1);
+      if (digits.empty() || digits.size() > 9 || (digits.size() > 1 && digits[0] == '0') ||
+          !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        return false;
+      index.push_back(std::stol(digits));
+      i = close + 1;
+    }
+    for (const auto& g : s.generators) {
+      if (auto* net = std::get_if<ParticleNet>(&g); net && net->name == base)
+        return index.size() == 2 && index[0] < net->rows && index[1] < net->cols;
+      if (auto* chain = std::get_if<ParticleChain>(&g); chain && chain->name == base)
+        return index.size() == 1 && index[0] < chain->count;
+    }
+    return false;
+  }
+
+  struct Named {
+    const char* kind;
+    std::string path;
+  };
+  const Ctx& ctx_;
+  std::map<std::string, Named> names_;
+  std::map<std::string, std::string> effect_paths_;  // effect type -> where it was first given
+};
+
+// "line L, column C" of a byte offset (0-based) in text.
+std::string location(const std::string& text, std::size_t offset) {
+  offset = std::min(offset, text.size());
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n');
+  const auto last_newline = offset == 0 ? std::string::npos : text.rfind('\n', offset - 1);
+  const auto column = last_newline == std::string::npos ? offset + 1 : offset - last_newline;
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// Parses strictly: no comments, and a key given twice in one object is an error
+// (nlohmann would silently keep the last one).
+json parse_json(const std::string& text, const Ctx& ctx) {
+  struct Frame {
+    bool array;
+    std::size_t index = 0;
+    std::string key;
+    std::set<std::string> keys;
+  };
+  std::vector<Frame> stack;
+  auto callback = [&](int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        stack.push_back(Frame{false, 0, {}, {}});
+        break;
+      case json::parse_event_t::array_start:
+        stack.push_back(Frame{true, 0, {}, {}});
+        break;
+      case json::parse_event_t::key: {
+        std::string path;
+        for (std::size_t i = 0; i + 1 < stack.size(); ++i) {
+          path += '/';
+          path += stack[i].array ? std::to_string(stack[i].index) : token(stack[i].key);
+        }
+        Frame& f = stack.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second)
+          fail_at(ctx, path + "/" + token(f.key), "expected each key at most once per object, got it twice");
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        stack.pop_back();
+        [[fallthrough]];
+      case json::parse_event_t::value:
+        if (!stack.empty() && stack.back().array) ++stack.back().index;
+        break;
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/false);
+  } catch (const json::parse_error& e) {
+    // what(): "[json.exception.parse_error.101] parse error at line 2, column 3: DETAIL"
+    std::string detail = e.what();
+    if (auto p = detail.find("parse error"); p != std::string::npos)
+      if (auto colon = detail.find(": ", p); colon != std::string::npos) detail = detail.substr(colon + 2);
+    const std::size_t offset = e.byte > 0 ? e.byte - 1 : 0;
+    throw input_error(
+        one_line(ctx.file + ": " + location(text, offset) + ": malformed JSON: " + shorten(detail, 300)));
+  } catch (const json::exception& e) {
+    // e.g. "[json.exception.out_of_range.406] number overflow parsing '1e400'" (no position given)
+    std::string detail = e.what();
+    if (auto p = detail.find("] "); p != std::string::npos) detail = detail.substr(p + 2);
+    std::string where;
+    if (auto q = detail.find('\''); q != std::string::npos)
+      if (auto end = detail.find('\'', q + 1); end != std::string::npos)
+        if (auto at = text.find(detail.substr(q + 1, end - q - 1)); at != std::string::npos)
+          where = location(text, at) + ": ";
+    throw input_error(one_line(ctx.file + ": " + where + "malformed JSON: " + shorten(detail, 300)));
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::filesystem::path& file) {
+  const Ctx ctx{file.string(), file.parent_path()};
+  const json root = parse_json(text, ctx);
+  Scene s = Loader(ctx).scene(root);
+  s.file = file;
+  s.sha256 = sha256_hex(text);
+  return s;
+}
+
+Scene load_scene(const std::filesystem::path& file) {
+  const std::string where = file.string();
+  std::error_code ec;
+  if (fs::is_directory(file, ec))
+    throw input_error(one_line(where + ": expected a scene file, got a directory"));
+  std::FILE* f = std::fopen(where.c_str(), "rb");
+  if (!f) throw input_error(one_line(where + ": cannot open the scene file: " + std::strerror(errno)));
+  std::string text;
+  char buffer[65536];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) text.append(buffer, n);
+  const bool failed = std::ferror(f) != 0;
+  const int error = errno;
+  std::fclose(f);
+  if (failed) throw input_error(one_line(where + ": cannot read the scene file: " + std::strerror(error)));
+  return parse_scene(text, file);
+}
+
+}  // namespace gacompare::core
