@@ -1,0 +1,117 @@
+// The solvers of Appendix B against closed-form solutions: y' = −y and the
+// harmonic oscillator. Convergence orders are checked by halving the step, the
+// adaptive methods by the global error their tolerance promises.
+#include "core/ode.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace gacompare::core {
+namespace {
+
+SolverSpec spec(SolverMethod m, double dt, double tol = 1e-9) { return {m, dt, tol, tol}; }
+
+// y' = −y, y(0) = 1, integrated to t = 1: error against e^−1.
+double decay_error(SolverMethod m, double dt) {
+  OdeSolver s(spec(m, dt), 1);
+  std::vector<double> y{1.0};
+  double t = 0;
+  Profile p;
+  s.advance([](double, std::span<const double> yy, std::span<double> dy) { dy[0] = -yy[0]; }, t, 1.0, y, p);
+  EXPECT_EQ(t, 1.0);
+  return std::abs(y[0] - std::exp(-1.0));
+}
+
+TEST(Ode, EulerIsFirstOrder) {
+  // Halving h halves the error of a first-order method: ratio 2 up to O(h) terms.
+  const double r = decay_error(SolverMethod::euler, 1e-3) / decay_error(SolverMethod::euler, 5e-4);
+  EXPECT_NEAR(r, 2.0, 0.01);
+}
+
+TEST(Ode, Rk4IsFourthOrder) {
+  // Ratio 2⁴ = 16 up to O(h) terms; h = 0.02 keeps the error far above rounding.
+  const double r = decay_error(SolverMethod::rk4, 0.02) / decay_error(SolverMethod::rk4, 0.01);
+  EXPECT_NEAR(r, 16.0, 0.5);
+}
+
+// x'' = −x from (1, 0) over one period 2π. Each accepted step's error is at most
+// abs_tol + rel_tol·|y| ≤ 2·tol (|y| ≤ 1), and the oscillator neither damps nor
+// amplifies errors, so the global error stays below 2·tol·steps.
+void oscillator(SolverMethod m, double tol, double& error, SolverStats& stats) {
+  OdeSolver s(spec(m, 0.1, tol), 2);
+  std::vector<double> y{1.0, 0.0};
+  double t = 0;
+  Profile p;
+  const double T = 2 * std::numbers::pi;
+  s.advance([](double, std::span<const double> yy, std::span<double> dy) { dy[0] = yy[1]; dy[1] = -yy[0]; }, t, T, y, p);
+  error = std::hypot(y[0] - 1.0, y[1]);
+  stats = s.stats();
+  EXPECT_EQ(t, T);
+  EXPECT_EQ(p[Stage::integrate].calls, stats.steps_accepted + stats.steps_rejected);
+}
+
+TEST(Ode, CashKarpMeetsItsTolerance) {
+  for (double tol : {1e-6, 1e-9, 1e-12}) {
+    double err;
+    SolverStats st;
+    oscillator(SolverMethod::cash_karp45, tol, err, st);
+    EXPECT_LT(err, 2 * tol * static_cast<double>(st.steps_accepted)) << "tol " << tol;
+    EXPECT_EQ(st.derivative_evaluations, 6 * (st.steps_accepted + st.steps_rejected));
+  }
+}
+
+TEST(Ode, Rk4DoublingMeetsItsTolerance) {
+  for (double tol : {1e-6, 1e-9}) {
+    double err;
+    SolverStats st;
+    oscillator(SolverMethod::rk4_doubling, tol, err, st);
+    EXPECT_LT(err, 2 * tol * static_cast<double>(st.steps_accepted)) << "tol " << tol;
+    EXPECT_EQ(st.derivative_evaluations, 12 * (st.steps_accepted + st.steps_rejected));
+  }
+}
+
+TEST(Ode, TighterToleranceCostsMoreSteps) {
+  double e1, e2;
+  SolverStats s1, s2;
+  oscillator(SolverMethod::cash_karp45, 1e-6, e1, s1);
+  oscillator(SolverMethod::cash_karp45, 1e-11, e2, s2);
+  EXPECT_GT(s2.steps_accepted, 5 * s1.steps_accepted);  // h ∝ tol^(1/5): 10^(5/5) = 10×
+  EXPECT_LT(e2, e1);
+}
+
+TEST(Ode, FixedStepsSplitTheIntervalEvenly) {
+  // 0.25 s with dt = 0.1 takes 3 equal steps of 1/12 s, never a sliver.
+  OdeSolver s(spec(SolverMethod::rk4, 0.1), 1);
+  std::vector<double> y{0.0};
+  double t = 0;
+  Profile p;
+  s.advance([](double, std::span<const double>, std::span<double> dy) { dy[0] = 1; }, t, 0.25, y, p);
+  EXPECT_EQ(s.stats().steps_accepted, 3u);
+  EXPECT_DOUBLE_EQ(s.stats().min_step, 0.25 / 3);
+  EXPECT_DOUBLE_EQ(y[0], 0.25);
+}
+
+TEST(Ode, NonFiniteDerivativeIsAnErrorNotAHang) {
+  OdeSolver s(spec(SolverMethod::cash_karp45, 0.1), 1);
+  std::vector<double> y{1.0};
+  double t = 0;
+  Profile p;
+  auto f = [](double tt, std::span<const double>, std::span<double> dy) { dy[0] = tt > 0.5 ? NAN : 1.0; };
+  try {
+    s.advance(f, t, 1.0, y, p);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::run);
+    EXPECT_NE(std::string(e.what()).find("step size underflow"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Ode, SplitMethodsAreRefusedUntilImplemented) {
+  EXPECT_THROW(OdeSolver(spec(SolverMethod::symplectic_euler, 0.1), 2), Error);
+  EXPECT_THROW(OdeSolver(spec(SolverMethod::velocity_verlet, 0.1), 2), Error);
+}
+
+}  // namespace
+}  // namespace gacompare::core
