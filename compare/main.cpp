@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
   CLI::App app{"gacompare: traditional vs geometric-algebra physics, stage by stage"};
   app.set_version_flag("--version", "gacompare " + compare::tool_version());
   app.require_subcommand(1);
+  app.fallthrough();  // global flags (--quiet) may follow the subcommand
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
 

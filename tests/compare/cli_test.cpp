@@ -1,0 +1,169 @@
+// The gacompare command line end to end: the files it writes, their fields, and
+// its exit codes (0 success, 1 a run failed, 2 bad usage or input).
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+// Runs gacompare with `args`; stdout and stderr captured separately.
+Result gacompare(const std::string& args) {
+  const fs::path dir = fs::temp_directory_path() / ("gacompare_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string cmd = std::string(GACOMPARE_BIN) + " " + args + " >" + (dir / "out").string() + " 2>" +
+                          (dir / "err").string();
+  const int status = std::system(cmd.c_str());
+  auto slurp = [](const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out"), slurp(dir / "err")};
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("gacompare_cli_" + std::to_string(::getpid())) / name;
+  fs::remove_all(d);
+  return d;
+}
+
+json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return json::parse(in);
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_text(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p) << text;
+}
+
+const std::string kScene = std::string(GACOMPARE_DATA_DIR) + "/scenes/projectile_linear_drag.json";
+
+TEST(Cli, CompareWritesResultsAndReportForBothBackends) {
+  const fs::path out = fresh_dir("compare");
+  const Result r = gacompare("compare " + kScene + " --repeat 3 --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, out.string() + "\n");  // the report folder's path, alone on stdout
+  const json j = read_json(out / "results.json");
+  EXPECT_EQ(j["tool"]["name"], "gacompare");
+  EXPECT_FALSE(j["tool"]["version"].get<std::string>().empty());
+  EXPECT_EQ(j["scene"]["name"], "projectile_linear_drag");
+  EXPECT_EQ(j["scene"]["sha256"].get<std::string>().size(), 64u);
+  for (const char* k : {"cpu", "compiler", "date"}) EXPECT_FALSE(j["machine"][k].get<std::string>().empty()) << k;
+  ASSERT_EQ(j["runs"].size(), 2u);
+  EXPECT_EQ(j["runs"][0]["backend"], "traditional");
+  EXPECT_EQ(j["runs"][1]["backend"], "cga");
+  for (const auto& run : j["runs"]) {
+    const auto& s0 = run["samples"][0];
+    EXPECT_EQ(s0["t"], 0.0);
+    EXPECT_EQ(run["samples"].back()["t"], 2.0);
+    EXPECT_EQ(s0["particles"]["shot"]["position"].size(), 3u);
+    EXPECT_EQ(s0["particles"]["shot"]["velocity"], json::array({10.0, 0.0, 10.0}));
+    EXPECT_TRUE(s0["energy"].contains("kinetic"));
+    EXPECT_TRUE(s0["energy"].contains("potential"));
+    EXPECT_EQ(s0["linear_momentum"].size(), 3u);
+    EXPECT_EQ(s0["angular_momentum"].size(), 3u);
+    EXPECT_TRUE(run["stages"].contains("integrate"));
+    EXPECT_TRUE(run["stages"].contains("forces"));
+    EXPECT_FALSE(run["stages"].contains("narrowphase"));  // a stage that did not run is absent
+    EXPECT_GT(run["stages"]["integrate"]["calls"].get<int>(), 0);
+    EXPECT_EQ(run["stages"]["integrate"]["seconds_each_repeat"].size(), 3u);
+    EXPECT_GT(run["solver"]["steps_accepted"].get<int>(), 0);
+    EXPECT_TRUE(run["solver"].contains("steps_rejected"));
+    EXPECT_GT(run["solver"]["derivative_evaluations"].get<int>(), 0);
+    EXPECT_TRUE(run["counters"].is_object());
+  }
+  const std::string md = read_text(out / "report.md");
+  EXPECT_NE(md.find("| `integrate` |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `forces` |"), std::string::npos) << md;
+  EXPECT_NE(md.find("cga / traditional"), std::string::npos) << md;
+  EXPECT_TRUE(fs::exists(out / "stages.csv"));
+  for (const auto& e : fs::directory_iterator(out))  // no temporary files left behind
+    EXPECT_NE(e.path().filename().string().front(), '.') << e.path();
+}
+
+TEST(Cli, SeveralScenesGetOneFolderEachAndASummary) {
+  const fs::path out = fresh_dir("many");
+  const std::string other = std::string(GACOMPARE_DATA_DIR) + "/scenes/falling_quadratic_drag.json";
+  const Result r = gacompare("compare " + kScene + " " + other + " --repeat 1 --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "projectile_linear_drag" / "results.json"));
+  EXPECT_TRUE(fs::exists(out / "falling_quadratic_drag" / "report.md"));
+  const std::string md = read_text(out / "report.md");
+  EXPECT_NE(md.find("projectile_linear_drag"), std::string::npos);
+  EXPECT_NE(md.find("falling_quadratic_drag"), std::string::npos);
+}
+
+TEST(Cli, RunUsesOneBackend) {
+  const fs::path out = fresh_dir("run");
+  const Result r = gacompare("run " + kScene + " --backend cga --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = read_json(out / "results.json");
+  ASSERT_EQ(j["runs"].size(), 1u);
+  EXPECT_EQ(j["runs"][0]["backend"], "cga");
+}
+
+TEST(Cli, BadSceneIsOneLineAndExitTwo) {
+  const fs::path bad = fresh_dir("bad") / "broken.json";
+  write_text(bad, R"({"name": "x", "duration": -1, "output": {"every": 0.1}, "solver": {"method": "rk4"}})");
+  const Result r = gacompare("compare " + bad.string() + " --out " + fresh_dir("bad_out").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("broken.json: /duration:"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(fresh_dir("bad_out")));
+}
+
+TEST(Cli, BadUsageExitsTwo) {
+  EXPECT_EQ(gacompare("compare").code, 2);
+  EXPECT_EQ(gacompare("frobnicate").code, 2);
+  EXPECT_EQ(gacompare("run " + kScene + " --backend quaternions").code, 2);
+  EXPECT_EQ(gacompare("compare /no/such/scene.json").code, 2);
+  EXPECT_EQ(gacompare("compare " + kScene + " --repeat 0").code, 2);
+}
+
+TEST(Cli, FailedRunExitsOneAndKeepsItsResults) {
+  const fs::path dir = fresh_dir("nan");
+  write_text(dir / "nan.json", R"({"name": "nan", "duration": 1.0, "output": {"every": 0.5},
+    "solver": {"method": "rk4", "dt": 0.01},
+    "effects": [{"type": "attraction_to_point", "point": [0, 0, 0], "D": 1.0}],
+    "particles": [{"name": "doomed", "mass": 1.0, "position": [0, 0, 0]}]})");
+  const Result r = gacompare("compare " + (dir / "nan.json").string() + " --repeat 1 --quiet --out " + (dir / "out").string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("particle 'doomed'"), std::string::npos) << r.err;
+  const json j = read_json(dir / "out" / "results.json");
+  EXPECT_NE(j["runs"][0]["error"].get<std::string>().find("doomed"), std::string::npos);
+  EXPECT_EQ(j["runs"][0]["samples"].size(), 1u);
+}
+
+TEST(Cli, VersionHelpAndList) {
+  const Result v = gacompare("--version");
+  EXPECT_EQ(v.code, 0);
+  EXPECT_NE(v.out.find("gacompare "), std::string::npos);
+  EXPECT_EQ(gacompare("--help").code, 0);
+  const Result l = gacompare("list");
+  EXPECT_EQ(l.code, 0) << l.err;
+  EXPECT_NE(l.out.find("projectile_linear_drag"), std::string::npos);
+}
+
+}  // namespace
