@@ -81,6 +81,17 @@ void BM_vector_product_dense(benchmark::State& s) {
   const auto a = densify<Cl3>(convert(in().a, as_vector3)), b = densify<Cl3>(convert(in().b, as_vector3));
   run<Dense<Cl3>>(s, [&](int i) { return a[i] * b[i]; });
 }
+// The same formula written out by hand on the same layout: shows what the
+// compile-time tables cost over hand-written scalar code (nothing: the assembly is
+// the same), apart from what Eigen's own layout buys.
+void BM_vector_product_hand(benchmark::State& s) {
+  const auto a = convert(in().a, as_vector3), b = convert(in().b, as_vector3);
+  run<Rotor3>(s, [&](int i) {
+    const auto &x = a[i].c, &y = b[i].c;
+    return Rotor3{{x[0] * y[0] + x[1] * y[1] + x[2] * y[2], x[0] * y[1] - x[1] * y[0], x[0] * y[2] - x[2] * y[0],
+                   x[1] * y[2] - x[2] * y[1]}};
+  });
+}
 void BM_vector_product_eigen(benchmark::State& s) {
   const auto& a = in().a;
   const auto& b = in().b;
@@ -132,6 +143,25 @@ void BM_rotate_vector_matrix(benchmark::State& s) {
   run<Eigen::Vector3d>(s, [&](int i) { return m[i] * x[i]; });
 }
 
+// --- rotate a conformal point: R X R̃ (eq. 12)  vs  q x q* -----------------------------
+void BM_rotate_point_sparse(benchmark::State& s) {
+  std::vector<Rotor5> r;
+  for (const auto& x : rotors(in().q)) r.push_back(embed(x));
+  const auto x = convert(in().a, as_point);
+  run<Vector5>(s, [&](int i) { return sandwich(r[i], x[i]); });
+}
+void BM_rotate_point_dense(benchmark::State& s) {
+  std::vector<Dense<Cl41>> r;
+  for (const auto& x : rotors(in().q)) r.push_back(to_dense(embed(x)));
+  const auto x = densify<Cl41>(convert(in().a, as_point));
+  run<Dense<Cl41>>(s, [&](int i) { return r[i] * x[i] * ~r[i]; });
+}
+void BM_rotate_point_eigen(benchmark::State& s) {
+  const auto& q = in().q;
+  const auto& x = in().a;
+  run<Eigen::Vector3d>(s, [&](int i) { return q[i] * x[i]; });
+}
+
 // --- move a conformal point: M X M̃ with M = T R  vs  R x + t --------------------------
 std::vector<decltype(Translator{} * Rotor5{})> motors() {
   std::vector<decltype(Translator{} * Rotor5{})> out;
@@ -153,6 +183,23 @@ void BM_move_point_eigen(benchmark::State& s) {
   const auto& t = in().b;
   const auto& x = in().a;
   run<Eigen::Vector3d>(s, [&](int i) { return Eigen::Vector3d(q[i] * x[i] + t[i]); });
+}
+
+// The outermorphism: the motor's 5×5 matrix once per motor, then matrix × point.
+void BM_move_point_matrix(benchmark::State& s) {
+  std::vector<Eigen::Matrix<double, 5, 5>> m;
+  for (const auto& mm : motors()) m.push_back(outermorphism(mm));
+  std::vector<Eigen::Matrix<double, 5, 1>> x;
+  for (const auto& p : convert(in().a, as_point)) x.emplace_back(p.c[0], p.c[1], p.c[2], p.c[3], p.c[4]);
+  run<Eigen::Matrix<double, 5, 1>>(s, [&](int i) { return Eigen::Matrix<double, 5, 1>(m[i] * x[i]); });
+}
+// Traditional with the rotation as a matrix too (what a rigid body keeps).
+void BM_move_point_eigen_matrix(benchmark::State& s) {
+  std::vector<Eigen::Matrix3d> m;
+  for (const auto& q : in().q) m.push_back(q.toRotationMatrix());
+  const auto& t = in().b;
+  const auto& x = in().a;
+  run<Eigen::Vector3d>(s, [&](int i) { return Eigen::Vector3d(m[i] * x[i] + t[i]); });
 }
 
 // --- sphere through four points: P1∧P2∧P3∧P4  vs  solving for the centre ------------
@@ -191,10 +238,14 @@ void BM_sphere_4_points_eigen(benchmark::State& s) {
   BENCHMARK(BM_##op##_eigen)->Name("BM_" #op "/eigen");
 
 GA_BENCH(vector_product)
+BENCHMARK(BM_vector_product_hand)->Name("BM_vector_product/hand");
 GA_BENCH(rotor_product)
 GA_BENCH(rotate_vector)
 BENCHMARK(BM_rotate_vector_matrix)->Name("BM_rotate_vector/matrix");
+GA_BENCH(rotate_point)
 GA_BENCH(move_point)
+BENCHMARK(BM_move_point_matrix)->Name("BM_move_point/matrix");
+BENCHMARK(BM_move_point_eigen_matrix)->Name("BM_move_point/eigen_matrix");
 GA_BENCH(sphere_4_points)
 
 }  // namespace

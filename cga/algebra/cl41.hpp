@@ -78,6 +78,23 @@ using Dilator = decltype(dilator(0.0));
 // A rotation rotor of Cl(3,0) acting in Cl(4,1): it leaves n and n̄ fixed (eq. 13).
 using Rotor5 = Multivector<Cl41, Rotor3::blades>;
 
+// The 5×5 matrix of X ↦ V X Ṽ on vectors (the versor's outermorphism), column i
+// the image of basis vector i. Built once per body, it moves each conformal point
+// for 25 multiply-adds instead of a full sandwich: the form the Gaigen ray tracer
+// used (DESIGN.md "Fair comparison").
+template <BladeSet S>
+Eigen::Matrix<double, 5, 5> outermorphism(const Multivector<Cl41, S>& v) {
+  Eigen::Matrix<double, 5, 5> m;
+  const auto vr = reverse(v);
+  for (int i = 0; i < 5; ++i) {
+    Vector5 e{};
+    e.c[i] = 1;
+    const auto img = widen<Vector5::blades>(product<Product::geometric, Vector5::blades>(v * e, vr));
+    for (int k = 0; k < 5; ++k) m(k, i) = img.c[k];
+  }
+  return m;
+}
+
 // exp of a 2-blade B of Cl(4,1) (B² a scalar), the closed forms of §1.4:
 //   B² < 0 rotation: cos|B| + B sin|B|/|B|
 //   B² = 0 translation: 1 + B (n a is null, eq. 15)
