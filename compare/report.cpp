@@ -158,7 +158,7 @@ std::string stage_csv(const std::vector<SceneResult>& results) {
 std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats) {
   std::ostringstream o;
   o << "# gacompare: " << results.size() << " scenes\n\n" << header(machine, repeats) << "\n";
-  o << "| scene | traditional | cga | cga / traditional | max divergence (m) | energy drift trad / cga |\n"
+  o << "| scene | traditional | cga | cga / traditional | max divergence (m) | energy change trad / cga |\n"
     << "|---|---:|---:|---:|---:|---:|\n";
   for (const auto& r : results) {
     const BackendResult* trad = find(r, "traditional");
