@@ -14,9 +14,10 @@ ParticleEffect convert(const core::Effect& e) {
   if (auto* g = std::get_if<core::Gravity>(&e)) return Gravity{vector3(g->g)};
   if (auto* d = std::get_if<core::LinearDrag>(&e)) return LinearDrag{d->k};
   if (auto* d = std::get_if<core::QuadraticDrag>(&e)) return QuadraticDrag{d->k};
-  if (auto* a = std::get_if<core::AttractionBetweenParticles>(&e)) return AttractionBetweenParticles{a->C};
+  if (auto* a = std::get_if<core::AttractionBetweenParticles>(&e))
+    return AttractionBetweenParticles{a->C, a->softening * a->softening};
   const auto& p = std::get<core::AttractionToPoint>(e);
-  return AttractionToPoint{vector3(p.point), p.D};
+  return AttractionToPoint{vector3(p.point), p.D, p.softening * p.softening};
 }
 }  // namespace
 
@@ -57,14 +58,15 @@ void add_force(const QuadraticDrag& e, const ParticleModel&, std::span<const dou
   }
 }
 
-// Table 2: C m_i m_j / r² along the line between them. No softening yet: two
-// particles meeting give a non-finite state that the run reports by name.
+// Table 2: C m_i m_j / r² along the line between them, softened (Plummer) to
+// C m_i m_j r / (r² + ε²)^(3/2). With ε = 0, two particles that meet give a
+// non-finite state that the run reports by name.
 void add_force(const AttractionBetweenParticles& e, const ParticleModel& m, std::span<const double> y,
                std::vector<Vector>& f) {
   for (std::size_t i = 0; i < f.size(); ++i)
     for (std::size_t j = i + 1; j < f.size(); ++j) {
       const Vector r = position(y, j) - position(y, i);
-      const double r2 = norm2(r);
+      const double r2 = norm2(r) + e.eps2;
       const Vector fij = (e.C * m.mass[i] * m.mass[j] / (r2 * std::sqrt(r2))) * r;
       f[i] += fij;
       f[j] -= fij;
@@ -74,16 +76,20 @@ void add_force(const AttractionBetweenParticles& e, const ParticleModel& m, std:
 void add_force(const AttractionToPoint& e, const ParticleModel& m, std::span<const double> y, std::vector<Vector>& f) {
   for (std::size_t i = 0; i < f.size(); ++i) {
     const Vector r = e.point - position(y, i);
-    const double r2 = norm2(r);
+    const double r2 = norm2(r) + e.eps2;
     f[i] += (e.D * m.mass[i] / (r2 * std::sqrt(r2))) * r;
   }
 }
 
-void particle_derivative(const ParticleModel& m, std::span<const double> y, std::span<double> dydt,
-                         std::vector<Vector>& forces, core::Profile& profile) {
+void accumulate_forces(const ParticleModel& m, std::span<const double> y, std::vector<Vector>& forces,
+                       core::Profile& profile) {
   core::ScopedStage timed(profile, core::Stage::forces);
   for (auto& f : forces) f = Vector{};
   for (const auto& e : m.effects) std::visit([&](const auto& effect) { add_force(effect, m, y, forces); }, e);
+}
+
+void particle_derivative(const ParticleModel& m, std::span<const double> y, const std::vector<Vector>& forces,
+                         std::span<double> dydt) {
   for (std::size_t i = 0; i < forces.size(); ++i) {
     const Vector a = m.inv_mass[i] * forces[i];
     for (int k = 0; k < 3; ++k) {

@@ -28,7 +28,8 @@ json sample_json(const core::Scene& scene, const core::Sample& s) {
           {"bodies", bodies},
           {"energy", {{"kinetic", s.kinetic}, {"potential", s.potential}}},
           {"linear_momentum", vec(s.linear_momentum)},
-          {"angular_momentum", vec(s.angular_momentum)}};
+          {"angular_momentum", vec(s.angular_momentum)},
+          {"constraint_violation", s.constraint_violation}};
 }
 
 json spread_json(const Spread& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }
@@ -62,6 +63,7 @@ json run_json(const core::Scene& scene, const BackendResult& b) {
               {"min_step", run.solver.steps_accepted ? run.solver.min_step : 0.0},
               {"max_step", run.solver.max_step}}},
             {"counters", run.counters},
+            {"metrics", run.metrics},
             {"deterministic", b.deterministic}};
   if (run.error) j["error"] = *run.error;
   return j;

@@ -2,6 +2,7 @@
 
 #include "cga/backend.hpp"
 #include "core/error.hpp"
+#include "core/generators.hpp"
 #include "core/simulator.hpp"
 #include "traditional/backend.hpp"
 
@@ -30,7 +31,8 @@ bool same_state(const core::Sample& a, const core::Sample& b) {
 }
 }  // namespace
 
-SceneResult compare_scene(const core::Scene& scene, const std::vector<std::string>& backends, int repeats) {
+SceneResult compare_scene(const core::Scene& written, const std::vector<std::string>& backends, int repeats) {
+  const core::Scene scene = core::expand_generators(written);
   SceneResult result{scene, std::vector<BackendResult>(backends.size())};
   for (int r = 0; r < repeats; ++r) {
     for (std::size_t k = 0; k < backends.size(); ++k) {

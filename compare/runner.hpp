@@ -13,7 +13,7 @@ namespace gacompare::compare {
 // The backends that can run a scene, in report order.
 const std::vector<std::string>& backend_names();
 
-// One simulation through the named backend. Throws input_error for an unknown
+// One simulation through the named backend; the scene's generators must be expanded. Throws input_error for an unknown
 // backend or a scene the backend cannot simulate.
 core::Run run_backend(const core::Scene& scene, std::string_view backend);
 
@@ -27,7 +27,7 @@ struct BackendResult {
 };
 
 struct SceneResult {
-  core::Scene scene;
+  core::Scene scene;  // with its generators expanded: particles match the samples
   std::vector<BackendResult> backends;  // in backend_names() order
 };
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <variant>
 
 namespace gacompare::core {
@@ -24,11 +25,14 @@ void fill_invariants(const Scene& scene, Sample& s) {
       for (std::size_t i = 0; i < ps.size(); ++i) s.potential -= ps[i].mass * g->g.dot(s.particles[i].position);
     } else if (const auto* a = std::get_if<AttractionToPoint>(&e)) {
       for (std::size_t i = 0; i < ps.size(); ++i)
-        s.potential -= a->D * ps[i].mass / (s.particles[i].position - a->point).norm();
+        s.potential -= a->D * ps[i].mass /
+                       std::sqrt((s.particles[i].position - a->point).squaredNorm() + a->softening * a->softening);
     } else if (const auto* c = std::get_if<AttractionBetweenParticles>(&e)) {
       for (std::size_t i = 0; i < ps.size(); ++i)
         for (std::size_t j = i + 1; j < ps.size(); ++j)
-          s.potential -= c->C * ps[i].mass * ps[j].mass / (s.particles[i].position - s.particles[j].position).norm();
+          s.potential -= c->C * ps[i].mass * ps[j].mass /
+                         std::sqrt((s.particles[i].position - s.particles[j].position).squaredNorm() +
+                                   c->softening * c->softening);
     }
   }
 }

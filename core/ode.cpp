@@ -6,8 +6,8 @@ bool is_adaptive(SolverMethod m) {
   return m == SolverMethod::rk4_doubling || m == SolverMethod::cash_karp45;
 }
 
-OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n)
-    : spec_(spec), h_(spec.dt),
+OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> velocity_of)
+    : spec_(spec), h_(spec.dt), velocity_of_(std::move(velocity_of)),
       k1_(n), k2_(n), k3_(n), k4_(n), k5_(n), k6_(n), tmp_(n), out_(n), half_(n), err_(n) {
   switch (spec.method) {
     case SolverMethod::euler:
@@ -17,8 +17,10 @@ OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n)
       break;
     case SolverMethod::symplectic_euler:
     case SolverMethod::velocity_verlet:
-      throw input_error("solver.method '" + std::string(to_string(spec.method)) +
-                        "' needs the position/velocity split of issue #4; it is not implemented yet");
+      if (velocity_of_.size() != n)
+        throw input_error("solver.method '" + std::string(to_string(spec.method)) +
+                          "' needs a state of positions and velocities, which this backend's state is not");
+      break;
   }
 }
 

@@ -16,6 +16,14 @@
 // no safety factor or limits, which lets one lucky step grow h without bound.
 // Fixed-step methods split each output interval into equal steps no longer than
 // dt (the recording mode of fn 39), so the last step is never a sliver.
+//
+// Beyond the report, two split (symplectic) methods for a state of positions and
+// velocities, where the derivative of position i is velocity velocity_of[i]:
+//   symplectic_euler  v += h a(x, v); x += h v  (one evaluation a step)
+//   velocity_verlet   x += h v + h²/2 a; v += h/2 (a + a(x', v*)), with the
+//                     velocity predictor v* = v + h a for velocity-dependent
+//                     forces (exact Verlet when forces depend on position only);
+//                     a(x', v*) is reused as the next step's a (one evaluation).
 #include "core/error.hpp"
 #include "core/scene.hpp"
 #include "core/stage.hpp"
@@ -42,19 +50,28 @@ bool is_adaptive(SolverMethod m);
 
 class OdeSolver {
  public:
-  OdeSolver(const SolverSpec& spec, std::size_t n);
+  // velocity_of[i]: for a position component i the index of its velocity, −1 for
+  // a velocity component; needed only by the split methods.
+  OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> velocity_of = {});
 
   // f(double t, std::span<const double> y, std::span<double> dydt).
+  // after_step(std::vector<double>& y) -> bool runs after every accepted step and
+  // says whether it changed y (constraint projection does).
   // Advances y from t to t_end, leaving t == t_end. Throws run_error when an
   // adaptive step shrinks below what double precision can resolve.
+  template <class F, class G>
+  void advance(F&& f, double& t, double t_end, std::vector<double>& y, Profile& profile, G&& after_step);
   template <class F>
-  void advance(F&& f, double& t, double t_end, std::vector<double>& y, Profile& profile);
+  void advance(F&& f, double& t, double t_end, std::vector<double>& y, Profile& profile) {
+    advance(f, t, t_end, y, profile, [](std::vector<double>&) { return false; });
+  }
 
   const SolverStats& stats() const { return stats_; }
 
  private:
   template <class F> void eval(F& f, double t, std::span<const double> y, std::vector<double>& dy);
   template <class F> void rk4_step(F& f, double t, double h, const std::vector<double>& y, std::vector<double>& out);
+  template <class F> void split_step(F& f, double t, double h, std::vector<double>& y);
   template <class F> double cash_karp_step(F& f, double t, double h, const std::vector<double>& y);
   double error_ratio(const std::vector<double>& y, const std::vector<double>& ynew,
                      const std::vector<double>& err) const;
@@ -63,6 +80,8 @@ class OdeSolver {
   SolverSpec spec_;
   double h_;  // adaptive: the step to try next
   SolverStats stats_;
+  std::vector<int> velocity_of_;
+  bool have_acc_ = false;  // velocity_verlet: k5_ holds a(x, v) of the current state
   std::vector<double> k1_, k2_, k3_, k4_, k5_, k6_, tmp_, out_, half_, err_;
 };
 
@@ -121,7 +140,37 @@ double OdeSolver::cash_karp_step(F& f, double t, double h, const std::vector<dou
 }
 
 template <class F>
-void OdeSolver::advance(F&& f, double& t, double t_end, std::vector<double>& y, Profile& profile) {
+void OdeSolver::split_step(F& f, double t, double h, std::vector<double>& y) {
+  const std::size_t n = y.size();
+  if (spec_.method == SolverMethod::symplectic_euler) {
+    eval(f, t, y, k1_);
+    for (std::size_t i = 0; i < n; ++i)
+      if (velocity_of_[i] < 0) y[i] += h * k1_[i];
+    for (std::size_t i = 0; i < n; ++i)
+      if (velocity_of_[i] >= 0) y[i] += h * y[static_cast<std::size_t>(velocity_of_[i])];
+    return;
+  }
+  std::vector<double>& acc = k5_;  // velocity components of dy/dt: the accelerations
+  if (!have_acc_) eval(f, t, y, acc);
+  for (std::size_t i = 0; i < n; ++i)
+    if (velocity_of_[i] >= 0) {
+      const auto v = static_cast<std::size_t>(velocity_of_[i]);
+      y[i] += h * y[v] + 0.5 * h * h * acc[v];
+    }
+  for (std::size_t i = 0; i < n; ++i)
+    if (velocity_of_[i] < 0) {
+      tmp_[i] = y[i];
+      y[i] += h * acc[i];  // the predictor v*
+    }
+  eval(f, t + h, y, k1_);
+  for (std::size_t i = 0; i < n; ++i)
+    if (velocity_of_[i] < 0) y[i] = tmp_[i] + 0.5 * h * (acc[i] + k1_[i]);
+  acc.swap(k1_);
+  have_acc_ = true;
+}
+
+template <class F, class G>
+void OdeSolver::advance(F&& f, double& t, double t_end, std::vector<double>& y, Profile& profile, G&& after_step) {
   const double span = t_end - t;
   if (!(span > 0)) return;
   const std::size_t n = y.size();
@@ -136,11 +185,14 @@ void OdeSolver::advance(F&& f, double& t, double t_end, std::vector<double>& y, 
       if (spec_.method == SolverMethod::euler) {
         eval(f, tk, y, k1_);
         for (std::size_t i = 0; i < n; ++i) y[i] += h * k1_[i];
-      } else {
+      } else if (spec_.method == SolverMethod::rk4) {
         rk4_step(f, tk, h, y, out_);
         y.swap(out_);
+      } else {
+        split_step(f, tk, h, y);
       }
       record(h);
+      if (after_step(y)) have_acc_ = false;
     }
     t = t_end;
     return;
@@ -167,6 +219,7 @@ void OdeSolver::advance(F&& f, double& t, double t_end, std::vector<double>& y, 
       y.swap(out_);
       t = last ? t_end : t + h;
       record(h);
+      after_step(y);
       // Grow (at most 5×) from the step just taken; a clipped last step does not
       // shrink the next interval's first try.
       const double grow = ratio == 0 ? 5.0 : std::min(5.0, 0.9 * std::pow(ratio, -1.0 / (order + 1)));

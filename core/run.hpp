@@ -31,6 +31,7 @@ struct Sample {
   double kinetic = 0, potential = 0;
   Vec3 linear_momentum{0, 0, 0};
   Vec3 angular_momentum{0, 0, 0};  // about the origin, world frame
+  double constraint_violation = 0; // max over constraints of |C|/|∇C|, metres
 };
 
 struct Run {
@@ -39,6 +40,7 @@ struct Run {
   Profile profile;
   SolverStats solver;
   std::map<std::string, std::uint64_t> counters;
+  std::map<std::string, double> metrics;  // measured values that are not counts (largest CG residual)
   double wall_seconds = 0;          // whole run, start to last sample
   std::optional<std::string> error; // set when the run stopped early; samples so far are kept
 };

@@ -41,6 +41,12 @@ std::string_view to_string(SolverMethod m) {
   return "unknown";
 }
 
+std::string_view constraint_name(const Constraint& c) {
+  static constexpr std::array<std::string_view, 6> names = {"distance_to_point", "distance", "on_plane",
+                                                            "on_line",           "on_circle", "on_helix"};
+  return names[c.index()];
+}
+
 std::optional<SolverMethod> solver_method_from_string(std::string_view s) {
   for (auto m : {SolverMethod::euler, SolverMethod::rk4, SolverMethod::rk4_doubling,
                  SolverMethod::cash_karp45, SolverMethod::symplectic_euler, SolverMethod::velocity_verlet})
@@ -337,7 +343,9 @@ bool spans_volume(const std::vector<Vec3>& p) {
 constexpr std::array<std::string_view, 6> kEffectTypes = {
     "gravity",   "linear_drag", "quadratic_drag", "attraction_between_particles", "attraction_to_point",
     "collisions"};
-constexpr std::array<std::string_view, 2> kConstraintTypes = {"distance_to_point", "distance"};
+constexpr std::array<std::string_view, 6> kConstraintTypes = {"distance_to_point", "distance", "on_plane",
+                                                               "on_line",           "on_circle", "on_helix"};
+constexpr std::array<std::string_view, 3> kDrift = {"off", "baumgarte", "projection"};
 constexpr std::array<std::string_view, 2> kGeneratorTypes = {"particle_net", "particle_chain"};
 constexpr std::array<std::string_view, 6> kMethods = {
     "euler", "rk4", "rk4_doubling", "cash_karp45", "symplectic_euler", "velocity_verlet"};
@@ -353,8 +361,9 @@ class Loader {
   explicit Loader(const Ctx& ctx) : ctx_(ctx) {}
 
   Scene scene(const json& root) {
-    static constexpr Keys<10> keys = {"name",    "description", "duration",    "output", "solver",
-                                      "effects", "particles",   "constraints", "bodies", "generators"};
+    static constexpr Keys<11> keys = {"name",      "description", "duration",    "output",
+                                      "solver",    "effects",     "particles",   "constraints",
+                                      "bodies",    "generators",  "constraint_solver"};
     Obj o({ctx_, &root, ""}, keys);
     Scene s;
     s.name = str(o.req("name"));
@@ -366,6 +375,7 @@ class Loader {
     s.output_every = number(every, Range::positive);
     if (s.output_every > s.duration) every.expected("a number > 0 and <= duration (" + fmt(s.duration) + ")");
     s.solver = solver(o.req("solver"));
+    if (auto c = o.opt("constraint_solver")) s.constraint_solver = constraint_solver(*c);
     each(o.opt("effects"), [&](const Val& v) { s.effects.push_back(effect(v)); });
     each(o.opt("particles"), [&](const Val& v) { s.particles.push_back(particle(v)); });
     each(o.opt("bodies"), [&](const Val& v) { s.bodies.push_back(body(v)); });
@@ -386,6 +396,23 @@ class Loader {
     return spec;
   }
 
+  ConstraintSolverSpec constraint_solver(const Val& v) {
+    static constexpr Keys<6> keys = {"drift",          "baumgarte_alpha", "baumgarte_beta", "projection_tolerance",
+                                     "cg_tolerance",   "cg_max_iterations"};
+    Obj o(v, keys);
+    ConstraintSolverSpec c;
+    if (auto x = o.opt("drift")) {
+      const std::string d = one_of(*x, kDrift);
+      c.drift = d == "off" ? Drift::off : d == "baumgarte" ? Drift::baumgarte : Drift::projection;
+    }
+    if (auto x = o.opt("baumgarte_alpha")) c.baumgarte_alpha = number(*x, Range::non_negative);
+    if (auto x = o.opt("baumgarte_beta")) c.baumgarte_beta = number(*x, Range::non_negative);
+    if (auto x = o.opt("projection_tolerance")) c.projection_tolerance = number(*x, Range::positive);
+    if (auto x = o.opt("cg_tolerance")) c.cg_tolerance = number(*x, Range::positive);
+    if (auto x = o.opt("cg_max_iterations")) c.cg_max_iterations = integer(*x, 1, 1000000);
+    return c;
+  }
+
   Effect effect(const Val& v) {
     const std::string type = type_of(v, kEffectTypes);
     if (auto [it, fresh] = effect_paths_.emplace(type, v.path); !fresh)
@@ -404,13 +431,18 @@ class Loader {
       return type == "linear_drag" ? Effect(LinearDrag{k}) : Effect(QuadraticDrag{k});
     }
     if (type == "attraction_between_particles") {
-      static constexpr Keys<2> keys = {"type", "C"};
-      return AttractionBetweenParticles{number(Obj(v, keys).req("C"))};
+      static constexpr Keys<3> keys = {"type", "C", "softening"};
+      Obj o(v, keys);
+      AttractionBetweenParticles a{number(o.req("C")), 0};
+      if (auto x = o.opt("softening")) a.softening = number(*x, Range::non_negative);
+      return a;
     }
     if (type == "attraction_to_point") {
-      static constexpr Keys<3> keys = {"type", "point", "D"};
+      static constexpr Keys<4> keys = {"type", "point", "D", "softening"};
       Obj o(v, keys);
-      return AttractionToPoint{vec3(o.req("point")), number(o.req("D"))};
+      AttractionToPoint a{vec3(o.req("point")), number(o.req("D")), 0};
+      if (auto x = o.opt("softening")) a.softening = number(*x, Range::non_negative);
+      return a;
     }
     static constexpr Keys<3> keys = {"type", "restitution", "penetration_tolerance"};
     Obj o(v, keys);
@@ -531,8 +563,39 @@ class Loader {
     return c;
   }
 
+  // A direction given in a scene: non-zero and finite, returned as a unit vector.
+  static Vec3 unit(const Val& v) {
+    const Vec3 d = vec3(v);
+    const double n = d.norm();
+    if (!(n > 0 && std::isfinite(n))) v.expected("a direction [x, y, z] with a length > 0 (and finite)");
+    return d / n;
+  }
+
   Constraint constraint(const Val& v, const Scene& s) {
-    if (type_of(v, kConstraintTypes) == "distance_to_point") {
+    const std::string type = type_of(v, kConstraintTypes);
+    if (type == "on_plane") {
+      static constexpr Keys<4> keys = {"type", "particle", "point", "normal"};
+      Obj o(v, keys);
+      return OnPlane{particle_ref(o.req("particle"), s), vec3(o.req("point")), unit(o.req("normal"))};
+    }
+    if (type == "on_line") {
+      static constexpr Keys<4> keys = {"type", "particle", "point", "direction"};
+      Obj o(v, keys);
+      return OnLine{particle_ref(o.req("particle"), s), vec3(o.req("point")), unit(o.req("direction"))};
+    }
+    if (type == "on_circle") {
+      static constexpr Keys<5> keys = {"type", "particle", "center", "normal", "radius"};
+      Obj o(v, keys);
+      return OnCircle{particle_ref(o.req("particle"), s), vec3(o.req("center")), unit(o.req("normal")),
+                      number(o.req("radius"), Range::positive)};
+    }
+    if (type == "on_helix") {
+      static constexpr Keys<6> keys = {"type", "particle", "center", "axis", "radius", "pitch"};
+      Obj o(v, keys);
+      return OnHelix{particle_ref(o.req("particle"), s), vec3(o.req("center")), unit(o.req("axis")),
+                     number(o.req("radius"), Range::positive), number(o.req("pitch"), Range::positive)};
+    }
+    if (type == "distance_to_point") {
       static constexpr Keys<4> keys = {"type", "particle", "point", "length"};
       Obj o(v, keys);
       DistanceToPoint d;

@@ -29,8 +29,11 @@ struct SolverSpec {
 struct Gravity { Vec3 g{0, 0, -9.81}; };                 // F = m g
 struct LinearDrag { double k = 0; };                      // F = -k v
 struct QuadraticDrag { double k = 0; };                   // F = -k |v| v
-struct AttractionBetweenParticles { double C = 0; };      // F = C m1 m2 / r^2, towards each other
-struct AttractionToPoint { Vec3 point{0, 0, 0}; double D = 0; };  // F = D m / r^2, towards point
+// Attractions (Table 2) with an optional Plummer softening length ε ≥ 0:
+// F = C m1 m2 r / (r² + ε²)^(3/2), potential −C m1 m2 / √(r² + ε²). ε = 0 is the
+// report's exact 1/r² law, singular where two particles meet.
+struct AttractionBetweenParticles { double C = 0; double softening = 0; };  // towards each other
+struct AttractionToPoint { Vec3 point{0, 0, 0}; double D = 0; double softening = 0; };  // F = D m / r², towards point
 struct Collisions { double restitution = 0.5; double penetration_tolerance = 1e-4; };
 using Effect = std::variant<Gravity, LinearDrag, QuadraticDrag, AttractionBetweenParticles,
                             AttractionToPoint, Collisions>;
@@ -45,9 +48,27 @@ struct Particle {
 };
 
 // --- constraints (§2.1.2) ---------------------------------------------------------
-struct DistanceToPoint { std::string particle; Vec3 point{0, 0, 0}; double length = 0; };
-struct DistanceBetween { std::string a, b; double length = 0; };
-using Constraint = std::variant<DistanceToPoint, DistanceBetween>;
+struct DistanceToPoint { std::string particle; Vec3 point{0, 0, 0}; double length = 0; };  // eq. 25 (also: on a sphere)
+struct DistanceBetween { std::string a, b; double length = 0; };                           // eq. 26
+struct OnPlane { std::string particle; Vec3 point{0, 0, 0}; Vec3 normal{0, 0, 1}; };          // normal: unit
+struct OnLine { std::string particle; Vec3 point{0, 0, 0}; Vec3 direction{1, 0, 0}; };       // direction: unit
+struct OnCircle { std::string particle; Vec3 center{0, 0, 0}; Vec3 normal{0, 0, 1}; double radius = 1; };
+// x = c + r(cos θ u + sin θ v) + (pitch/2π) θ axis, (u, v, axis) right-handed; pitch: rise per turn.
+struct OnHelix { std::string particle; Vec3 center{0, 0, 0}; Vec3 axis{0, 0, 1}; double radius = 1; double pitch = 1; };
+using Constraint = std::variant<DistanceToPoint, DistanceBetween, OnPlane, OnLine, OnCircle, OnHelix>;
+std::string_view constraint_name(const Constraint& c);  // the scene's "type" string
+
+// How constraint forces are found and drift is held (§2.1.2): Lagrange multipliers
+// from J W Jᵀ λ = −J̇ q̇ − J W Q (eq. 24) by Jacobi-preconditioned conjugate gradient.
+enum class Drift { off, baumgarte, projection };
+struct ConstraintSolverSpec {
+  Drift drift = Drift::off;       // off reproduces the report: drift is left to grow
+  double baumgarte_alpha = 10;    // 1/s: C̈ + 2α Ċ + β² C = 0
+  double baumgarte_beta = 10;     // 1/s
+  double projection_tolerance = 1e-10;  // m: positions projected until every |C|/|∇C| is below it
+  double cg_tolerance = 1e-12;    // relative residual of the CG solve
+  int cg_max_iterations = 1000;
+};
 
 // --- shapes --------------------------------------------------------------------------
 struct BoxShape { Vec3 size{1, 1, 1}; };                   // full side lengths
@@ -98,6 +119,7 @@ struct Scene {
   double duration = 1;         // s
   double output_every = 0.01;  // s
   SolverSpec solver;
+  ConstraintSolverSpec constraint_solver;
   std::vector<Effect> effects;  // ONLY these are simulated
   std::vector<Particle> particles;
   std::vector<Constraint> constraints;

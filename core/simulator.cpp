@@ -1,6 +1,7 @@
 #include "core/simulator.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace gacompare::core {
 
@@ -15,11 +16,18 @@ void check_implemented(const Scene& scene) {
   auto refuse = [&](const std::string& what, int issue) {
     throw input_error(scene.file.string() + ": " + what + " cannot be simulated yet (issue #" + std::to_string(issue) + ")");
   };
-  if (!scene.constraints.empty()) refuse("/constraints", 4);
-  if (!scene.generators.empty()) refuse("/generators", 4);
+  if (!scene.generators.empty())
+    throw std::logic_error("simulate() needs a scene whose generators are expanded (expand_generators)");
   if (!scene.bodies.empty()) refuse("/bodies", 5);
   if (scene.find_effect<Collisions>()) refuse("the 'collisions' effect", 6);
   if (scene.particles.empty()) throw input_error(scene.file.string() + ": the scene has nothing to simulate (no particles)");
+}
+
+std::vector<int> particle_layout(std::size_t particles) {
+  std::vector<int> v(6 * particles, -1);
+  for (std::size_t i = 0; i < particles; ++i)
+    for (int k = 0; k < 3; ++k) v[6 * i + k] = static_cast<int>(6 * i + 3 + k);
+  return v;
 }
 
 std::vector<double> output_times(const Scene& scene) {

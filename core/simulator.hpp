@@ -4,6 +4,7 @@
 // the mathematics, not the dispatch. Each backend packs its own state into a flat
 // vector of doubles; the loop integrates it, samples it at the output times and
 // measures invariants from the backend-neutral sample.
+#include "core/generators.hpp"
 #include "core/invariants.hpp"
 #include "core/ode.hpp"
 #include "core/run.hpp"
@@ -18,14 +19,20 @@ namespace gacompare::core {
 
 template <class B>
 concept Backend = requires(const Scene& scene, const typename B::Model& m, double t, std::span<const double> y,
-                           std::span<double> out, Profile& profile, Sample& sample) {
+                           std::span<double> out, std::vector<double>& state, Profile& profile, Sample& sample) {
   { B::name } -> std::convertible_to<std::string_view>;
   // Turns the scene into the backend's model once: only the listed effects get an
   // object. Throws input_error for what the backend cannot simulate.
   { B::build(scene) } -> std::same_as<typename B::Model>;
   { B::state_size(m) } -> std::same_as<std::size_t>;
   { B::initial_state(m, out) };
+  // For the split solvers: velocity index of each position component, −1 for velocities.
+  { B::velocity_of(m) } -> std::same_as<std::vector<int>>;
   { B::derivative(m, t, y, out, profile) };
+  // After each accepted step (constraint projection); true when it changed the state.
+  { B::after_step(m, state, profile) } -> std::same_as<bool>;
+  { B::counters(m) } -> std::same_as<std::map<std::string, std::uint64_t>>;
+  { B::metrics(m) } -> std::same_as<std::map<std::string, double>>;
   // Fills sample.particles / sample.bodies in world terms.
   { B::observe(m, y, sample) };
   // "" when every component is finite, else what holds the bad value: "particle 'bob'".
@@ -41,9 +48,14 @@ std::string first_nonfinite(std::span<const double> y, std::size_t stride, const
 // simulate yet (and the issue that adds it): never a silent partial simulation.
 void check_implemented(const Scene& scene);
 
+// velocity_of for a state of particles [x (3), v (3)] each.
+std::vector<int> particle_layout(std::size_t particles);
+
 // The output times: every `every` seconds from 0, and `duration` itself.
 std::vector<double> output_times(const Scene& scene);
 
+// Runs a scene; generators must have been expanded (expand_generators), so that
+// the samples' particles match scene.particles.
 template <Backend B>
 Run simulate(const Scene& scene) {
   Run run;
@@ -52,7 +64,8 @@ Run simulate(const Scene& scene) {
   const auto model = B::build(scene);
   std::vector<double> y(B::state_size(model));
   B::initial_state(model, y);
-  OdeSolver solver(scene.solver, y.size());
+  OdeSolver solver(scene.solver, y.size(), B::velocity_of(model));
+  auto after = [&](std::vector<double>& yy) { return B::after_step(model, yy, run.profile); };
   auto f = [&](double t, std::span<const double> yy, std::span<double> dy) {
     B::derivative(model, t, yy, dy, run.profile);
   };
@@ -71,7 +84,7 @@ Run simulate(const Scene& scene) {
   record(t);
   for (std::size_t k = 1; k < times.size(); ++k) {
     try {
-      solver.advance(f, t, times[k], y, run.profile);
+      solver.advance(f, t, times[k], y, run.profile, after);
     } catch (const Error& e) {
       run.error = std::string(e.what());
       break;
@@ -86,6 +99,8 @@ Run simulate(const Scene& scene) {
   }
   run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.solver = solver.stats();
+  run.counters = B::counters(model);
+  run.metrics = B::metrics(model);
   return run;
 }
 

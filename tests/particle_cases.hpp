@@ -101,18 +101,37 @@ TYPED_TEST_P(ParticleCases, WhatCannotBeSimulatedYetIsRefused) {
   const auto scene = scene_from(R"({"name": "c", "duration": 1.0, "output": {"every": 0.5},
     "solver": {"method": "rk4"},
     "particles": [{"name": "a", "mass": 1.0, "position": [1, 0, 0]}],
-    "constraints": [{"type": "distance_to_point", "particle": "a", "point": [0, 0, 0], "length": 1}]})");
+    "bodies": [{"name": "b", "shape": {"box": [1, 1, 1]}, "mass": 1, "position": [0, 0, 5]}]})");
   try {
     core::simulate<TypeParam>(scene);
     FAIL() << "expected an error";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::input);
-    EXPECT_NE(std::string(e.what()).find("issue #4"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("issue #5"), std::string::npos) << e.what();
+  }
+}
+
+// A scene must start on its constraints: the first violated one is named.
+TYPED_TEST_P(ParticleCases, InitialConstraintViolationIsRefused) {
+  const auto scene = scene_from(R"({"name": "c", "duration": 1.0, "output": {"every": 0.5},
+    "solver": {"method": "rk4"},
+    "particles": [{"name": "a", "mass": 1.0, "position": [1, 0, 0]}],
+    "constraints": [{"type": "on_plane", "particle": "a", "point": [0, 0, 0], "normal": [0, 0, 1]},
+                    {"type": "distance_to_point", "particle": "a", "point": [0, 0, 0], "length": 1.5}]})");
+  try {
+    core::simulate<TypeParam>(scene);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::input);
+    EXPECT_NE(std::string(e.what()).find("constraint 1 (distance_to_point)"), std::string::npos) << e.what();
+    // The violation is the first-order distance |C|/|∇C| = |½(1² − 1.5²)| / 1.
+    EXPECT_NE(std::string(e.what()).find("by 0.625 m"), std::string::npos) << e.what();
   }
 }
 
 REGISTER_TYPED_TEST_SUITE_P(ParticleCases, ProjectileWithLinearDragMatchesClosedForm,
                             FallWithQuadraticDragMatchesClosedForm, GravityConservesEnergyAndPinnedParticlesStay,
-                            NonFiniteStateStopsTheRunByName, WhatCannotBeSimulatedYetIsRefused);
+                            NonFiniteStateStopsTheRunByName, WhatCannotBeSimulatedYetIsRefused,
+                            InitialConstraintViolationIsRefused);
 
 }  // namespace gacompare::testing

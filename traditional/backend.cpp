@@ -5,9 +5,30 @@
 namespace gacompare::traditional {
 
 Backend::Model Backend::build(const core::Scene& scene) {
-  Model m{build_particles(scene), {}};
+  Model m{build_particles(scene), {}, std::nullopt, {}};
+  m.constraints = build_constraints(scene, m.particles);
+  if (!m.constraints.constraints.empty()) m.solver.emplace(scene.constraint_solver, m.particles.inv_mass);
   m.forces.assign(m.particles.names.size(), Vector::Zero());
   return m;
+}
+
+std::vector<int> Backend::velocity_of(const Model& m) { return core::particle_layout(m.particles.names.size()); }
+
+void Backend::derivative(const Model& m, double, std::span<const double> y, std::span<double> dydt,
+                         core::Profile& profile) {
+  accumulate_forces(m.particles, y, m.forces, profile);
+  if (m.solver) {
+    core::ScopedStage timed(profile, core::Stage::constraints);
+    add_constraint_forces(m.constraints, m.particles, y, m.forces, *m.solver);
+  }
+  particle_derivative(m.particles, y, m.forces, dydt);
+}
+
+bool Backend::after_step(const Model& m, std::vector<double>& y, core::Profile& profile) {
+  if (!m.solver || m.solver->spec().drift != core::Drift::projection) return false;
+  core::ScopedStage timed(profile, core::Stage::constraints);
+  project_constraints(m.constraints, m.particles, y, *m.solver);
+  return true;
 }
 
 void Backend::observe(const Model& m, std::span<const double> y, core::Sample& s) {
@@ -15,6 +36,10 @@ void Backend::observe(const Model& m, std::span<const double> y, core::Sample& s
   for (std::size_t i = 0; i < s.particles.size(); ++i) {
     s.particles[i].position = Vector(y[6 * i], y[6 * i + 1], y[6 * i + 2]);
     s.particles[i].velocity = Vector(y[6 * i + 3], y[6 * i + 4], y[6 * i + 5]);
+  }
+  if (m.solver) {
+    constraint_rows(m.constraints, m.particles, y, m.forces);
+    s.constraint_violation = core::max_violation(m.constraints.rows);
   }
 }
 

@@ -20,8 +20,8 @@ using Vector = Eigen::Vector3d;
 struct Gravity { Vector g; };
 struct LinearDrag { double k; };
 struct QuadraticDrag { double k; };
-struct AttractionBetweenParticles { double C; };
-struct AttractionToPoint { Vector point; double D; };
+struct AttractionBetweenParticles { double C; double eps2; };       // eps2: softening length squared
+struct AttractionToPoint { Vector point; double D; double eps2; };
 using ParticleEffect = std::variant<Gravity, LinearDrag, QuadraticDrag, AttractionBetweenParticles, AttractionToPoint>;
 
 struct ParticleModel {
@@ -44,8 +44,11 @@ void add_force(const AttractionBetweenParticles& e, const ParticleModel& m, std:
                std::vector<Vector>& f);
 void add_force(const AttractionToPoint& e, const ParticleModel& m, std::span<const double> y, std::vector<Vector>& f);
 
-// dy/dt for the particles; `forces` is scratch space (one entry per particle).
-void particle_derivative(const ParticleModel& m, std::span<const double> y, std::span<double> dydt,
-                         std::vector<Vector>& forces, core::Profile& profile);
+// forces = the sum of every listed effect's force (stage `forces`).
+void accumulate_forces(const ParticleModel& m, std::span<const double> y, std::vector<Vector>& forces,
+                       core::Profile& profile);
+// dy/dt from the total forces: dx/dt = v, dv/dt = F/m; zero for pinned particles.
+void particle_derivative(const ParticleModel& m, std::span<const double> y, const std::vector<Vector>& forces,
+                         std::span<double> dydt);
 
 }  // namespace gacompare::traditional

@@ -317,7 +317,7 @@ std::vector<BadCase> bad_cases() {
        set("/colour", "red"),
        {": /colour: expected one of the keys name, description, duration, output, solver, effects, "
         "particles, "
-        "constraints, bodies, generators, got the unknown key \"colour\""}},
+        "constraints, bodies, generators, constraint_solver, got the unknown key \"colour\""}},
       {"UnknownParticleKey",
        set("/particles/0/mas", 1),
        {": /particles/0/mas: expected one of the keys name, mass, position, velocity, pinned, got the "
@@ -452,7 +452,8 @@ std::vector<BadCase> bad_cases() {
        {": /constraints/1/length: expected a number > 0, got 0"}},
       {"UnknownConstraintType",
        set("/constraints/0/type", "spring"),
-       {": /constraints/0/type: expected one of distance_to_point, distance, got \"spring\""}},
+       {": /constraints/0/type: expected one of distance_to_point, distance, on_plane, on_line, on_circle, "
+        "on_helix, got \"spring\""}},
       // bodies and shapes
       {"MassAndDensity",
        set("/bodies/0/density", 1),
