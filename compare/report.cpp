@@ -131,7 +131,7 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
     return b.run.solver.steps_accepted ? fmt("%.3g", b.run.solver.min_step) + " / " + fmt("%.3g", b.run.solver.max_step)
                                        : std::string("–");
   });
-  row("largest relative energy change, max ΔE / E(0)", [](const BackendResult& b) { return fmt("%.3e", energy_drift(b.run)); });
+  row("largest energy change, relative (max ΔE / energy scale)", [](const BackendResult& b) { return fmt("%.3e", energy_drift(b.run)); });
   row("samples", [](const BackendResult& b) { return std::to_string(b.run.samples.size()); });
   row("repeats bit-identical", [](const BackendResult& b) { return std::string(b.deterministic ? "yes" : "**no**"); });
   if (r.backends.size() > 1)

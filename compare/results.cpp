@@ -73,9 +73,12 @@ json run_json(const core::Scene& scene, const BackendResult& b) {
 double energy_drift(const core::Run& run) {
   if (run.samples.empty()) return 0;
   const double e0 = run.samples.front().kinetic + run.samples.front().potential;
-  double worst = 0;
-  for (const auto& s : run.samples) worst = std::max(worst, std::abs(s.kinetic + s.potential - e0));
-  return worst / std::max(std::abs(e0), 1e-300);
+  double worst = 0, scale = std::abs(e0);
+  for (const auto& s : run.samples) {
+    worst = std::max(worst, std::abs(s.kinetic + s.potential - e0));
+    scale = std::max({scale, std::abs(s.kinetic), std::abs(s.potential)});
+  }
+  return scale > 0 ? worst / scale : 0.0;
 }
 
 double max_divergence(const SceneResult& r) {

@@ -14,7 +14,9 @@ nlohmann::ordered_json results_json(const SceneResult& r, const MachineInfo& mac
 // (0 with fewer than two backends): the divergence between backends.
 double max_divergence(const SceneResult& r);
 
-// max over samples of |E(t) − E(0)| / max(|E(0)|, tiny): the energy drift.
+// max over samples of |E(t) − E(0)|, relative to the largest of |E(0)|, the
+// kinetic and the potential energy seen in the run (E(0) alone can be 0): the
+// energy drift, or the energy dissipated where drag acts.
 double energy_drift(const core::Run& run);
 
 }  // namespace gacompare::compare

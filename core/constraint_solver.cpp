@@ -129,7 +129,17 @@ const std::vector<double>& ConstraintSolver::solve(std::span<const ConstraintRow
   ++stats_.solves;
   stats_.cg_iterations += static_cast<std::uint64_t>(cg.iterations());
   if (cg.info() != Eigen::Success) ++stats_.cg_not_converged;
-  if (std::isfinite(cg.error())) stats_.max_relative_residual = std::max(stats_.max_relative_residual, cg.error());
+  // A solve that ends far from its tolerance means J W Jᵀ is singular with a
+  // right-hand side outside its range: redundant or locked constraints (a taut
+  // chain of rods between two pinned particles cannot move sideways at all).
+  // Stop with that said, rather than integrate the garbage λ into NaNs.
+  if (!(cg.error() <= 1e-6)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "constraints: the multiplier solve did not converge (relative residual %.3g after %ld CG iterations)",
+                  cg.error(), static_cast<long>(cg.iterations()));
+    throw run_error(std::string(buf) + ": the constraints are redundant or locked, e.g. a taut chain of rods between two pinned particles");
+  }
+  stats_.max_relative_residual = std::max(stats_.max_relative_residual, cg.error());
   lambda.assign(x.data(), x.data() + m);
   return lambda;
 }

@@ -12,6 +12,8 @@ packages=(
   nlohmann-json3-dev       # scene files, results.json
   libcli11-dev             # command line
   libssl-dev               # SHA-256 of scene files (libcrypto)
+  libboost-dev             # Boost.Odeint: the peer our solvers are checked and timed against
+  python3                  # scripts/bench-ratios.py (README tables)
 )
 missing=()
 for p in "${packages[@]}"; do
