@@ -34,7 +34,7 @@ TEST(TraditionalGeometry, CircumcircleAndSphereAreEquidistant) {
   for (int k = 0; k < kCases; ++k) {
     const Vec3 o = rng.site(), a = o + rng.point(1), b = o + rng.point(1), c = o + rng.point(1),
                d = o + rng.point(1);
-    if (min_distance({a, b, c, d}) < 0.1) continue;
+    if (min_distance({a, b, c, d}) < 0.1) { --k; continue; }
     const auto r = T::circumcircle(a, b, c);
     ASSERT_EQ(r.kind, Kind::circle);
     const Vec3 u = b - a, v = c - a;
@@ -57,7 +57,7 @@ TEST(TraditionalGeometry, DegenerateInputsAreTyped) {
   Rng rng(342);
   for (int k = 0; k < kNearCases; ++k) {
     const Vec3 a = rng.point(2), b = rng.point(2), c = rng.point(2);
-    if (min_distance({a, b, c}) < 0.1) continue;
+    if (min_distance({a, b, c}) < 0.1) { --k; continue; }
     const Vec3 on = a + rng.uniform(-2, 3) * (b - a);
     EXPECT_EQ(T::circumcircle(a, b, on).kind, Kind::degenerate);
     EXPECT_EQ(T::circumcircle(a, a, b).kind, Kind::degenerate);
@@ -68,7 +68,7 @@ TEST(TraditionalGeometry, DegenerateInputsAreTyped) {
     // 1e-9 off: solved, and the answer satisfies its equations to the
     // conditioning 1/sin ≈ 1e9·|edge|.
     const Vec3 off = on + 1e-9 * rng.perpendicular(b - a);
-    if ((off - a).norm() < 0.1 || (off - b).norm() < 0.1) continue;
+    if ((off - a).norm() < 0.1 || (off - b).norm() < 0.1) { --k; continue; }
     const auto r = T::circumcircle(a, b, off);
     ASSERT_EQ(r.kind, Kind::circle);
     const Vec3 u = b - a, v = off - a;
@@ -83,7 +83,7 @@ TEST(TraditionalGeometry, MeetsLieOnBothEntities) {
   for (int k = 0; k < kCases; ++k) {
     const Vec3 o = rng.site(), c1 = o + rng.point(1), c2 = o + rng.point(1), a = o + rng.point(1),
                b = o + rng.point(1), n1 = rng.unit(), n2 = rng.unit();
-    if (min_distance({c1, c2}) < 0.1 || min_distance({a, b}) < 0.1) continue;
+    if (min_distance({c1, c2}) < 0.1 || min_distance({a, b}) < 0.1) { --k; continue; }
     const double r1 = rng.uniform(0.2, 1.5), r2 = rng.uniform(0.2, 1.5);
     const double d1 = n1.dot(o) + rng.uniform(-1, 1), d2 = n2.dot(o) + rng.uniform(-1, 1);
     const auto s1 = T::sphere(c1, r1), s2 = T::sphere(c2, r2);
@@ -159,7 +159,7 @@ TEST(TraditionalGeometry, ReflectionsAreMirrorImages) {
   Rng rng(344);
   for (int k = 0; k < kCases; ++k) {
     const Vec3 o = rng.site(), x = o + rng.point(1), a = o + rng.point(1), b = o + rng.point(1), nrm = rng.unit();
-    if (min_distance({x, a, b}) < 0.1) continue;
+    if (min_distance({x, a, b}) < 0.1) { --k; continue; }
     const double d = nrm.dot(o) + rng.uniform(-1, 1), r = rng.uniform(0.2, 1.5);
     const double tol = kC * kEps * (o.norm() + 3);  // isometries: κ = 1
     const Vec3 xp = T::reflect_in_plane(x, T::plane(nrm, d));

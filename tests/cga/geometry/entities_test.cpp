@@ -110,7 +110,7 @@ TEST(Circumcircle, MatchesTwinOnRandomCases) {
   for (int k = 0; k < kCases; ++k) {
     const Vec3 o = rng.site();
     const Vec3 a = o + rng.point(1), b = o + rng.point(1), c = o + rng.point(1);
-    if (min_distance({a, b, c}) < 0.1) continue;
+    if (min_distance({a, b, c}) < 0.1) { --k; continue; }
     expect_same_circle(a, b, c, worst);
     if (HasFatalFailure()) return;
   }
@@ -122,9 +122,9 @@ TEST(Circumcircle, NearCollinearIsSolvedExactlyCollinearIsDegenerate) {
   for (int k = 0; k < kNearCases; ++k) {
     const Vec3 o = rng.point(0.5);
     const Vec3 a = o + rng.point(1), b = o + rng.point(1);
-    if ((b - a).norm() < 0.1) continue;
+    if ((b - a).norm() < 0.1) { --k; continue; }
     const double t = rng.uniform(-2, 3);
-    if (std::abs(t) < 0.1 || std::abs(t - 1) < 0.1) continue;  // keep ℓ ≳ 0.1 (cases.hpp)
+    if (std::abs(t) < 0.1 || std::abs(t - 1) < 0.1) { --k; continue; }  // keep ℓ ≳ 0.1 (cases.hpp)
     const Vec3 on = a + t * (b - a);
     // Within 1e-9 of collinear: a circle of radius ~1e9, both backends solve it.
     const Vec3 c = on + 1e-9 * rng.perpendicular(b - a);
@@ -176,7 +176,7 @@ TEST(SphereThrough, MatchesTwinOnRandomCases) {
   for (int k = 0; k < kCases; ++k) {
     const Vec3 o = rng.site();
     const Vec3 a = o + rng.point(1), b = o + rng.point(1), c = o + rng.point(1), d = o + rng.point(1);
-    if (min_distance({a, b, c, d}) < 0.1) continue;
+    if (min_distance({a, b, c, d}) < 0.1) { --k; continue; }
     expect_same_sphere(a, b, c, d, worst);
     if (HasFatalFailure()) return;
   }
@@ -189,10 +189,10 @@ TEST(SphereThrough, NearCoplanarIsSolvedCoplanarIsDegenerate) {
     const Vec3 o = rng.point(0.5);
     const Vec3 a = o + rng.point(1), b = o + rng.point(1), c = o + rng.point(1);
     const Vec3 nrm = (b - a).cross(c - a);
-    if (nrm.norm() < 0.1) continue;
+    if (nrm.norm() < 0.1) { --k; continue; }
     const Vec3 in = a + rng.uniform(-1, 2) * (b - a) + rng.uniform(-1, 2) * (c - a);
     const Vec3 d = in + 1e-9 * nrm.normalized();  // within 1e-9 of coplanar
-    if (min_distance({a, b, c, d}) < 0.1) continue;
+    if (min_distance({a, b, c, d}) < 0.1) { --k; continue; }
     EXPECT_EQ(T::sphere_through(a, b, c, d).kind, Kind::sphere);
     expect_same_sphere(a, b, c, d, worst);
     expect_same_sphere(d, c, b, a, worst);

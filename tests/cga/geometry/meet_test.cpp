@@ -43,7 +43,7 @@ TEST(MeetSphereSphere, MatchesTwinOnRandomCases) {
   int circles = 0;
   for (int k = 0; k < kCases; ++k) {
     const Vec3 o = rng.site(), c1 = o + rng.point(1), c2 = o + rng.point(1);
-    if ((c1 - c2).norm() < 0.1) continue;
+    if ((c1 - c2).norm() < 0.1) { --k; continue; }
     const double r1 = rng.uniform(0.2, 1.5), r2 = rng.uniform(0.2, 1.5);
     expect_same_sphere_sphere(c1, r1, c2, r2, worst);
     circles += T::meet_sphere_sphere(T::sphere(c1, r1), T::sphere(c2, r2)).kind == Kind::circle;
@@ -74,9 +74,14 @@ TEST(MeetSphereSphere, TangentNearTangentConcentricDegenerate) {
     EXPECT_EQ(T::meet_sphere_sphere(T::sphere(c1, r1), T::sphere(c1, r1)).kind, Kind::contained);
     EXPECT_EQ(C::meet_sphere_sphere(C::sphere(c1, r1), C::sphere(c1, r1 + 0.05)).kind, Kind::none);
     EXPECT_EQ(T::meet_sphere_sphere(T::sphere(c1, r1), T::sphere(c1, r1 + 0.05)).kind, Kind::none);
-    // Zero radius: no sphere.
+    // Zero or negative radius: no sphere, in both backends.
     EXPECT_EQ(C::meet_sphere_sphere(C::sphere(c1, 0), C::sphere(c1 + u, r1)).kind, Kind::degenerate);
     EXPECT_EQ(T::meet_sphere_sphere(T::sphere(c1, 0), T::sphere(c1 + u, r1)).kind, Kind::degenerate);
+    EXPECT_EQ(C::meet_sphere_sphere(C::sphere(c1, -r1), C::sphere(c1 + u, r1)).kind, Kind::degenerate);
+    EXPECT_EQ(T::meet_sphere_sphere(T::sphere(c1, -r1), T::sphere(c1 + u, r1)).kind, Kind::degenerate);
+    EXPECT_EQ(C::meet_line_sphere(*C::line_through(c1, c1 + u), C::sphere(c1, -r1)).kind, Kind::degenerate);
+    EXPECT_EQ(C::meet_sphere_plane(C::sphere(c1, -r1), C::plane(u, 0)).kind, Kind::degenerate);
+    EXPECT_NEAR(C::radius(C::sphere(c1, -r1)), -r1, 1e-14);
     if (HasFatalFailure()) return;
   }
 }
@@ -167,7 +172,7 @@ TEST(MeetLinePlane, MatchesTwinOnRandomCases) {
   Worst worst;
   for (int k = 0; k < kCases; ++k) {
     const Vec3 o = rng.site(), a = o + rng.point(1), b = o + rng.point(1), nrm = rng.unit();
-    if ((b - a).norm() < 0.1) continue;
+    if ((b - a).norm() < 0.1) { --k; continue; }
     expect_same_line_plane(a, b, nrm, nrm.dot(o) + rng.uniform(-1, 1), worst);
     if (HasFatalFailure()) return;
   }
@@ -221,7 +226,7 @@ TEST(MeetLineSphere, MatchesTwinOnRandomCases) {
   int pairs = 0;
   for (int k = 0; k < kCases; ++k) {
     const Vec3 o = rng.site(), a = o + rng.point(1), b = o + rng.point(1), c = o + rng.point(1);
-    if ((b - a).norm() < 0.1) continue;
+    if ((b - a).norm() < 0.1) { --k; continue; }
     const double r = rng.uniform(0.2, 1.5);
     expect_same_line_sphere(a, b, c, r, worst);
     pairs += T::meet_line_sphere(*T::line_through(a, b), T::sphere(c, r)).kind == Kind::point_pair;
