@@ -132,6 +132,28 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
                                        : std::string("–");
   });
   row("largest energy change, relative (max ΔE / energy scale)", [](const BackendResult& b) { return fmt("%.3e", energy_drift(b.run)); });
+  bool constrained = false;
+  for (const auto& b : r.backends) constrained = constrained || !b.run.counters.empty();
+  if (constrained) {
+    row("largest constraint violation (m, first-order distance)", [](const BackendResult& b) {
+      double worst = 0;
+      for (const auto& s : b.run.samples) worst = std::max(worst, s.constraint_violation);
+      return fmt("%.3e", worst);
+    });
+    for (const auto& [name, value] : r.backends.front().run.counters) {
+      (void)value;
+      o << "| " << name << " |";
+      for (const auto& b : r.backends) {
+        const auto it = b.run.counters.find(name);
+        o << " " << (it == b.run.counters.end() ? std::string("–") : std::to_string(it->second)) << " |";
+      }
+      o << "\n";
+    }
+    row("largest CG relative residual", [](const BackendResult& b) {
+      const auto it = b.run.metrics.find("max_cg_relative_residual");
+      return it == b.run.metrics.end() ? std::string("–") : fmt("%.2e", it->second);
+    });
+  }
   row("samples", [](const BackendResult& b) { return std::to_string(b.run.samples.size()); });
   row("repeats bit-identical", [](const BackendResult& b) { return std::string(b.deterministic ? "yes" : "**no**"); });
   if (r.backends.size() > 1)
