@@ -17,6 +17,38 @@ namespace T = traditional;
 using geometry::Kind;
 using namespace geometry::testing;
 
+// ---- eq. 19 itself ----
+
+// a = λ b for some λ: |a − λb| ≤ 1e-13·|a| per component, λ from the largest
+// component (O(1) random entities: a few roundings of O(1) products).
+template <class A, class B>
+::testing::AssertionResult proportional(const A& a, const B& b) {
+  unsigned big = 0;
+  for (unsigned k = 0; k < 32; ++k) big = std::abs(b[k]) > std::abs(b[big]) ? k : big;
+  if (b[big] == 0) return ::testing::AssertionFailure() << "zero";
+  const double lambda = a[big] / b[big];
+  double size = 0;
+  for (unsigned k = 0; k < 32; ++k) size = std::max(size, std::abs(a[k]));
+  for (unsigned k = 0; k < 32; ++k)
+    if (std::abs(a[k] - lambda * b[k]) > 1e-13 * size)
+      return ::testing::AssertionFailure() << "blade " << k << ": " << a[k] << " vs " << lambda * b[k];
+  return ::testing::AssertionSuccess();
+}
+
+TEST(Meet, Equation19AgreesWithTheNarrowForms) {
+  // M_r ∨ M_s = [⟨M_r M_s⟩_{10−r−s}]* on the direct blades, against meet.hpp's
+  // single products of the dual forms (S1∧S2, π⌋L), up to scale.
+  Rng rng(310);
+  for (int k = 0; k < 1000; ++k) {
+    const auto s1 = C::sphere(rng.point(1), rng.uniform(0.5, 1.5)), s2 = C::sphere(rng.point(1), rng.uniform(0.5, 1.5));
+    const auto m1 = undual(s1), m2 = undual(s2);  // direct 4-blades (grade 4 + 4: keep grade 2)
+    ASSERT_TRUE(proportional(!grade<2>(m1 * m2), undual(C::meet(s1, s2))));
+    const auto l = *C::line_through(rng.point(1), rng.point(1));
+    const auto p = C::plane(rng.unit(), rng.uniform(-1, 1));
+    ASSERT_TRUE(proportional(!grade<3>(l * undual(p)), C::meet(l, p)));  // grade 3 + 4: keep grade 3
+  }
+}
+
 // ---- sphere–sphere ----
 
 // κ = 1/sinφ (the radius r = √r²; sinφ = r d/(ρ1ρ2), the angle between the
