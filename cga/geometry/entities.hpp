@@ -17,8 +17,9 @@
 // invariants: −2 A·B = |a − b|², (A∧B∧C∧n)* has Euclidean part (b−a)×(c−a),
 // (A∧B∧C∧D)*·n = (b−a)·((c−a)×(d−a)), L² = |b − a|².
 #include "cga/algebra/cl41.hpp"
-#include "traditional/geometry.hpp"
+#include "core/geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -45,7 +46,6 @@ inline constexpr unsigned e12 = e5::e1 | e5::e2, e13 = e5::e1 | e5::e3, e23 = e5
 }  // namespace blade
 
 namespace detail {
-inline constexpr Vector5 n_vec() { return widen<Vector5::blades>(n_inf()); }
 // The Euclidean (e1 e2 e3) part of a vector: for a point or a dual sphere, λ·x;
 // for a dual plane, the normal.
 template <BladeSet S>
@@ -59,9 +59,20 @@ inline double weight(const Vector5& v) { return v.c[4] - v.c[3]; }
 // that the result is a finite point; only a zero or non-finite weight fails.
 inline std::optional<Vec3> point_of(const Vector5& v) {
   const double w = weight(v);
-  const Vec3 x = euclid(v) / w;
+  const Vec3 x = euclid(v) * (1 / w);  // one division, not three
   if (!(w != 0 && x.allFinite())) return std::nullopt;
   return x;
+}
+// Whether a dual sphere has a real, nonzero radius that its representation can
+// resolve. S² = ρ² is computed from components of size ½|c|², so its rounding
+// noise is eps·|S|² (|S|² the sum of squared components); a ρ² below kRelTol·|S|²
+// is a point, or an imaginary sphere, to working precision. (The twin only needs
+// ρ > 0; this floor, ρ ≳ 3e-6·(1 + |c|²/2) in units of the scene, is a limit of
+// the conformal representation itself.)
+inline bool real_radius(const Vector5& s, double r2) {
+  double size = 0;
+  for (double x : s.c) size += x * x;
+  return r2 > kRelTol * size;
 }
 }  // namespace detail
 
@@ -69,11 +80,15 @@ inline std::optional<Vec3> point_of(const Vector5& v) {
 
 inline ConformalPoint point(const Vec3& x) { return up(x); }
 
-// M* = C − ½ρ² n (§2.4.1, after [7]).
+// M* = C − ½ρ² n (§2.4.1, after [7]). A negative radius builds the imaginary
+// sphere C + ½ρ² n (S² = −ρ² < 0) rather than silently the real one: no meet
+// accepts it, as the twin rejects ρ ≤ 0, and radius() reports it as −|ρ|.
 inline DualSphere sphere(const Vec3& centre, double radius) {
-  return up(centre) - n_inf() * (0.5 * radius * radius);
+  return up(centre) - n_inf() * (0.5 * radius * std::abs(radius));
 }
 
+// {x : normal·x = offset}, normalised. The normal must be nonzero (as for the
+// twin): a zero normal is a caller's bug, not a degenerate configuration.
 inline DualPlane plane(const Vec3& normal, double offset) {
   const double k = normal.norm();
   const double d = offset / k;
@@ -146,43 +161,40 @@ inline Vec3 point_on(const Line& l) {
 // the dual sphere through the circle centred in its plane: its centre is the
 // circle's, read off as for any dual sphere. Condition 1/sin, like the twin.
 // round_centre takes the dual round (bivector); circle_centre a direct circle.
-inline std::optional<Vec3> round_centre(const Bivector5& b) {
-  const Vector5 p = n_inf() | b;
-  const Vector5 s = widen<Vector5::blades>(rc(b, p));
+// nb: n⌋B, when the caller has it already.
+inline std::optional<Vec3> round_centre(const Bivector5& b, const Vector5& nb) {
+  const Vector5 s = widen<Vector5::blades>(rc(b, nb));
   const double w = detail::weight(s);
-  const Vec3 c = detail::euclid(s) / w;
+  const Vec3 c = detail::euclid(s) * (1 / w);
   if (!(w != 0 && c.allFinite())) return std::nullopt;
   return c;
 }
+inline std::optional<Vec3> round_centre(const Bivector5& b) { return round_centre(b, n_inf() | b); }
 inline std::optional<Vec3> circle_centre(const Circle& k) { return round_centre(!k); }
 // The report's C = K n K, kept for the tests that show why it is not used.
 template <BladeSet S>
 std::optional<Vec3> round_centre_by_reflection(const Multivector<Cl41, S>& x) {
   return detail::point_of(product<Product::geometric, Vector5::blades>(x * n_inf(), x));
 }
-// Squared radius of a round, ρ² = −X² / (n⌋X)², the same for the direct circle
-// and the dual circle (K² = −B² and (n⌋K)² = −(n⌋B)² up to the same factor).
-template <BladeSet S>
-double round_radius2(const Multivector<Cl41, S>& x) {
-  const auto nx = n_inf() | x;
-  return -scalar_product(x, x) / scalar_product(nx, nx);
-}
 
-// Circle A ∧ B ∧ C; centre from the dual circle and its carrier plane K ∧ n
-// (round_centre), which also gives the normal. The report computes the centre this way
-// instead of eq. 38 (which it finds "non trivial"); the twin uses a better
-// closed form than eq. 38 too, so the comparison is best against best.
+// Circle A ∧ B ∧ C (§2.4.1, Table 1); centre from the dual circle and its carrier
+// plane K ∧ n (round_centre, better conditioned than the report's K n K), which
+// also gives the normal; radius |centre − a| (−K²/(n⌋K)² is as ill-conditioned
+// as K n K). The report prefers the conformal centre to eq. 38 (which it finds
+// "non trivial"); the twin uses a better closed form than eq. 38 too, so the
+// comparison is best against best.
 inline CircleResult circumcircle(const Vec3& a, const Vec3& b, const Vec3& c) {
   const ConformalPoint A = up(a), B = up(b), C = up(c);
-  const Circle k = (A ^ B) ^ C;
-  const DualPlane p = -!(k ^ n_inf());
+  const Bivector5 dual_circle = !((A ^ B) ^ C);
+  // n⌋K* = (n∧K)* is the carrier plane, (K∧n)* with the sign of plane_through:
+  // one product serves the normal, the collinearity test and the centre.
+  const DualPlane p = n_inf() | dual_circle;
   const double w2 = p.c[0] * p.c[0] + p.c[1] * p.c[1] + p.c[2] * p.c[2];
   const double uv = 4 * scalar_product(A, B) * scalar_product(A, C);
   if (!(w2 > kSinTol * kSinTol * uv)) return {Kind::degenerate};  // collinear or coincident
-  const auto centre = circle_centre(k);
+  const auto centre = round_centre(dual_circle, p);
   if (!centre) return {Kind::degenerate};
-  // The radius as |centre − a|: ρ² = −K²/(n⌋K)² is as ill-conditioned as K n K.
-  return {Kind::circle, *centre, (*centre - a).norm(), detail::euclid(p) / std::sqrt(w2)};
+  return {Kind::circle, *centre, (*centre - a).norm(), detail::euclid(p) * (1 / std::sqrt(w2))};
 }
 
 // The sphere A ∧ B ∧ C ∧ D (Table 1) in dual form, normalised to S·n = −1. The
