@@ -89,6 +89,11 @@ std::vector<double> ConstraintSolver::dynamics_rhs(std::span<const ConstraintRow
 const std::vector<double>& ConstraintSolver::solve(std::span<const ConstraintRow> rows, std::span<const double> b,
                                                    int warm) {
   const auto m = static_cast<Eigen::Index>(rows.size());
+  bool inputs_finite = true;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    inputs_finite = inputs_finite && std::isfinite(b[k]);
+    for (const auto& g : rows[k].grad) inputs_finite = inputs_finite && std::isfinite(g[0] + g[1] + g[2]);
+  }
   // Rows that touch each particle, to find the pairs of rows that couple.
   std::vector<std::vector<int>> touching(inv_mass_.size());
   for (int k = 0; k < static_cast<int>(rows.size()); ++k)
@@ -135,7 +140,10 @@ const std::vector<double>& ConstraintSolver::solve(std::span<const ConstraintRow
   // outside its range: redundant or locked constraints (a taut chain of rods
   // between two pinned particles cannot move sideways at all). Stop with that
   // said, rather than integrate the garbage λ into NaNs.
-  if (!(cg.error() <= 1e-3)) {
+  if (!inputs_finite)
+    throw run_error("constraints: the multiplier solve was given non-finite values: the state has diverged "
+                    "(a step too large for this scene, or an explicit Euler step on constraints)");
+  if (!(cg.error() <= 1e-3) || !x.allFinite()) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "constraints: the multiplier solve did not converge (relative residual %.3g after %ld CG iterations)",
                   cg.error(), static_cast<long>(cg.iterations()));

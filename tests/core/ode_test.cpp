@@ -49,7 +49,7 @@ void oscillator(SolverMethod m, double tol, double& error, SolverStats& stats) {
   error = std::hypot(y[0] - 1.0, y[1]);
   stats = s.stats();
   EXPECT_EQ(t, T);
-  EXPECT_EQ(p[Stage::integrate].calls, stats.steps_accepted + stats.steps_rejected);
+  EXPECT_EQ(p[Stage::integrate].calls, 1u);  // one timed scope per advance()
 }
 
 TEST(Ode, CashKarpMeetsItsTolerance) {
