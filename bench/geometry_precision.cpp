@@ -270,7 +270,11 @@ std::vector<Op> operations() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int n = argc > 1 ? std::atoi(argv[1]) : 1000;
+  int n = 1000;
+  if (argc > 2 || (argc == 2 && (std::sscanf(argv[1], "%d", &n) != 1 || n < 1))) {
+    std::fprintf(stderr, "usage: geometry_precision [cases per cell, a whole number >= 1; default 1000]\n");
+    return 2;
+  }
   const double distances[] = {1, 1e2, 1e4, 1e6};
   const char* backends[] = {"traditional", "cga", "cga, local origin"};
   const auto ops = operations();
