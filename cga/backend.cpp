@@ -6,7 +6,9 @@ namespace gacompare::cga {
 
 Backend::Model Backend::build(const core::Scene& scene) {
   Model m{build_particles(scene), {}, std::nullopt, {}};
-  m.constraints = build_constraints(scene, m.particles);
+  std::vector<double> y0(kParticleState * m.particles.names.size());
+  initial_particle_state(m.particles, y0);
+  m.constraints = Constraints::build(scene, m.particles.names, y0);
   if (!m.constraints.constraints.empty()) m.solver.emplace(scene.constraint_solver, m.particles.inv_mass);
   m.forces.assign(m.particles.names.size(), Vector{});
   return m;
@@ -19,7 +21,7 @@ void Backend::derivative(const Model& m, double, std::span<const double> y, std:
   accumulate_forces(m.particles, y, m.forces, profile);
   if (m.solver) {
     core::ScopedStage timed(profile, core::Stage::constraints);
-    add_constraint_forces(m.constraints, m.particles, y, m.forces, *m.solver);
+    Constraints::add_forces(m.constraints, m.particles.inv_mass, y, m.forces, *m.solver);
   }
   particle_derivative(m.particles, y, m.forces, dydt);
 }
@@ -27,7 +29,7 @@ void Backend::derivative(const Model& m, double, std::span<const double> y, std:
 bool Backend::after_step(const Model& m, std::vector<double>& y, core::Profile& profile) {
   if (!m.solver || m.solver->spec().drift != core::Drift::projection) return false;
   core::ScopedStage timed(profile, core::Stage::constraints);
-  project_constraints(m.constraints, m.particles, y, *m.solver);
+  Constraints::project(m.constraints, y, *m.solver);
   return true;
 }
 
@@ -38,7 +40,7 @@ void Backend::observe(const Model& m, std::span<const double> y, core::Sample& s
     s.particles[i].velocity = to_eigen(vector3(y[6 * i + 3], y[6 * i + 4], y[6 * i + 5]));
   }
   if (m.solver) {
-    constraint_rows(m.constraints, m.particles, y, m.forces);
+    Constraints::fill(m.constraints, {}, y, nullptr);
     s.constraint_violation = core::max_violation(m.constraints.rows);
   }
 }
