@@ -1,54 +1,32 @@
 #pragma once
-// Particle dynamics with 3-vectors (§2.1.1, Table 2), the traditional twin of
-// cga/particle.hpp: same names, same order, only the algebra differs.
-// State per particle: [x, v], 6 doubles, contiguous. dx/dt = v, dv/dt = F/m.
-#include "core/scene.hpp"
-#include "core/stage.hpp"
+// The traditional algebra for particles: Eigen 3-vectors with dot and cross
+// products. Particle dynamics and constraints are written once over it in
+// core/particle_system.hpp. Twin of cga/particle.hpp.
+#include "core/particle_system.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
+#include <array>
 #include <span>
-#include <string>
-#include <variant>
-#include <vector>
 
 namespace gacompare::traditional {
 
 using Vector = Eigen::Vector3d;
 
-// The effects a scene lists, in this backend's types (built once, DESIGN.md).
-struct Gravity { Vector g; };
-struct LinearDrag { double k; };
-struct QuadraticDrag { double k; };
-struct AttractionBetweenParticles { double C; double eps2; };       // eps2: softening length squared
-struct AttractionToPoint { Vector point; double D; double eps2; };
-using ParticleEffect = std::variant<Gravity, LinearDrag, QuadraticDrag, AttractionBetweenParticles, AttractionToPoint>;
-
-struct ParticleModel {
-  std::vector<std::string> names;
-  std::vector<double> mass, inv_mass;  // inv_mass 0 for pinned particles
-  std::vector<Vector> x0, v0;
-  std::vector<ParticleEffect> effects;
+struct VectorOps {
+  using Vector = traditional::Vector;
+  static Vector position(std::span<const double> y, int i) { return Vector(y[6 * i], y[6 * i + 1], y[6 * i + 2]); }
+  static Vector velocity(std::span<const double> y, int i) { return Vector(y[6 * i + 3], y[6 * i + 4], y[6 * i + 5]); }
+  static Vector from(const core::Vec3& v) { return v; }
+  static core::Vec3 to_world(const Vector& v) { return v; }
+  static double dot(const Vector& a, const Vector& b) { return a.dot(b); }
+  static Vector cross(const Vector& a, const Vector& b) { return a.cross(b); }
+  static Vector unit(const Vector& a) { return a.normalized(); }
+  static std::array<double, 3> raw(const Vector& a) { return {a[0], a[1], a[2]}; }
+  static Vector vec(const std::array<double, 3>& a) { return Vector(a[0], a[1], a[2]); }
 };
 
-inline constexpr std::size_t kParticleState = 6;
-
-ParticleModel build_particles(const core::Scene& scene);
-void initial_particle_state(const ParticleModel& m, std::span<double> y);
-
-// F += the effect's force on every particle.
-void add_force(const Gravity& e, const ParticleModel& m, std::span<const double> y, std::vector<Vector>& f);
-void add_force(const LinearDrag& e, const ParticleModel& m, std::span<const double> y, std::vector<Vector>& f);
-void add_force(const QuadraticDrag& e, const ParticleModel& m, std::span<const double> y, std::vector<Vector>& f);
-void add_force(const AttractionBetweenParticles& e, const ParticleModel& m, std::span<const double> y,
-               std::vector<Vector>& f);
-void add_force(const AttractionToPoint& e, const ParticleModel& m, std::span<const double> y, std::vector<Vector>& f);
-
-// forces = the sum of every listed effect's force (stage `forces`).
-void accumulate_forces(const ParticleModel& m, std::span<const double> y, std::vector<Vector>& forces,
-                       core::Profile& profile);
-// dy/dt from the total forces: dx/dt = v, dv/dt = F/m; zero for pinned particles.
-void particle_derivative(const ParticleModel& m, std::span<const double> y, const std::vector<Vector>& forces,
-                         std::span<double> dydt);
+using Particles = core::ParticleSystem<VectorOps>;
 
 }  // namespace gacompare::traditional
