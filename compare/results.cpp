@@ -29,7 +29,8 @@ json sample_json(const core::Scene& scene, const core::Sample& s) {
           {"energy", {{"kinetic", s.kinetic}, {"potential", s.potential}}},
           {"linear_momentum", vec(s.linear_momentum)},
           {"angular_momentum", vec(s.angular_momentum)},
-          {"constraint_violation", s.constraint_violation}};
+          {"constraint_violation", s.constraint_violation},
+          {"rotation_drift", s.rotation_drift}};
 }
 
 json spread_json(const Spread& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }

@@ -7,7 +7,7 @@
 
 namespace gacompare::core {
 
-void fill_invariants(const Scene& scene, Sample& s) {
+void fill_invariants(const Scene& scene, const std::vector<BodyProperties>& props, Sample& s) {
   s.kinetic = s.potential = 0;
   s.linear_momentum.setZero();
   s.angular_momentum.setZero();
@@ -20,9 +20,23 @@ void fill_invariants(const Scene& scene, Sample& s) {
     s.linear_momentum += m * v;
     s.angular_momentum += x.cross(m * v);
   }
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+    if (scene.bodies[b].is_static) continue;
+    const auto& body = s.bodies[b];
+    const double m = props[b].mass;
+    const Eigen::Matrix3d r =
+        Eigen::Quaterniond(body.orientation[0], body.orientation[1], body.orientation[2], body.orientation[3])
+            .toRotationMatrix();
+    const Vec3 L = r * props[b].inertia * r.transpose() * body.angular_velocity;
+    s.kinetic += 0.5 * m * body.velocity.squaredNorm() + 0.5 * body.angular_velocity.dot(L);
+    s.linear_momentum += m * body.velocity;
+    s.angular_momentum += body.position.cross(m * body.velocity) + L;
+  }
   for (const auto& e : scene.effects) {
     if (const auto* g = std::get_if<Gravity>(&e)) {
       for (std::size_t i = 0; i < ps.size(); ++i) s.potential -= ps[i].mass * g->g.dot(s.particles[i].position);
+      for (std::size_t b = 0; b < s.bodies.size(); ++b)
+        if (!scene.bodies[b].is_static) s.potential -= props[b].mass * g->g.dot(s.bodies[b].position);
     } else if (const auto* a = std::get_if<AttractionToPoint>(&e)) {
       for (std::size_t i = 0; i < ps.size(); ++i)
         s.potential -= a->D * ps[i].mass /

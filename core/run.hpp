@@ -32,6 +32,7 @@ struct Sample {
   Vec3 linear_momentum{0, 0, 0};
   Vec3 angular_momentum{0, 0, 0};  // about the origin, world frame
   double constraint_violation = 0; // max over constraints of |C|/|∇C|, metres
+  double rotation_drift = 0;       // max over bodies of ‖RᵀR − I‖, |q q* − 1| or |R R̃ − 1|
 };
 
 struct Run {

@@ -361,9 +361,9 @@ class Loader {
   explicit Loader(const Ctx& ctx) : ctx_(ctx) {}
 
   Scene scene(const json& root) {
-    static constexpr Keys<11> keys = {"name",      "description", "duration",    "output",
-                                      "solver",    "effects",     "particles",   "constraints",
-                                      "bodies",    "generators",  "constraint_solver"};
+    static constexpr Keys<12> keys = {"name",      "description", "duration",          "output",
+                                      "solver",    "effects",     "particles",         "constraints",
+                                      "bodies",    "generators",  "constraint_solver", "rigid_body"};
     Obj o({ctx_, &root, ""}, keys);
     Scene s;
     s.name = str(o.req("name"));
@@ -376,6 +376,7 @@ class Loader {
     if (s.output_every > s.duration) every.expected("a number > 0 and <= duration (" + fmt(s.duration) + ")");
     s.solver = solver(o.req("solver"));
     if (auto c = o.opt("constraint_solver")) s.constraint_solver = constraint_solver(*c);
+    if (auto c = o.opt("rigid_body")) s.rigid_body = rigid_body(*c);
     each(o.opt("effects"), [&](const Val& v) { s.effects.push_back(effect(v)); });
     each(o.opt("particles"), [&](const Val& v) { s.particles.push_back(particle(v)); });
     each(o.opt("bodies"), [&](const Val& v) { s.bodies.push_back(body(v)); });
@@ -413,6 +414,18 @@ class Loader {
     return c;
   }
 
+  RigidBodySpec rigid_body(const Val& v) {
+    static constexpr Keys<2> keys = {"rotation", "renormalise"};
+    static constexpr Keys<2> rotations = {"matrix", "quaternion"};
+    static constexpr Keys<2> renormalise = {"none", "every_step"};
+    Obj o(v, keys);
+    RigidBodySpec r;
+    if (auto x = o.opt("rotation")) r.rotation = one_of(*x, rotations) == "matrix" ? Rotation::matrix : Rotation::quaternion;
+    if (auto x = o.opt("renormalise"))
+      r.renormalise = one_of(*x, renormalise) == "none" ? Renormalise::none : Renormalise::every_step;
+    return r;
+  }
+
   Effect effect(const Val& v) {
     const std::string type = type_of(v, kEffectTypes);
     if (auto [it, fresh] = effect_paths_.emplace(type, v.path); !fresh)
@@ -426,9 +439,12 @@ class Loader {
       return g;
     }
     if (type == "linear_drag" || type == "quadratic_drag") {
-      static constexpr Keys<2> keys = {"type", "k"};
-      const double k = number(Obj(v, keys).req("k"), Range::non_negative);
-      return type == "linear_drag" ? Effect(LinearDrag{k}) : Effect(QuadraticDrag{k});
+      static constexpr Keys<3> keys = {"type", "k", "k_angular"};
+      Obj o(v, keys);
+      const double k = number(o.req("k"), Range::non_negative);
+      double ka = 0;
+      if (auto x = o.opt("k_angular")) ka = number(*x, Range::non_negative);
+      return type == "linear_drag" ? Effect(LinearDrag{k, ka}) : Effect(QuadraticDrag{k, ka});
     }
     if (type == "attraction_between_particles") {
       static constexpr Keys<3> keys = {"type", "C", "softening"};

@@ -27,8 +27,8 @@ struct SolverSpec {
 
 // --- effects (Table 2 of the report, plus collisions) ---------------------------
 struct Gravity { Vec3 g{0, 0, -9.81}; };                 // F = m g
-struct LinearDrag { double k = 0; };                      // F = -k v
-struct QuadraticDrag { double k = 0; };                   // F = -k |v| v
+struct LinearDrag { double k = 0; double k_angular = 0; };     // F = -k v; on bodies also τ = -k_angular ω
+struct QuadraticDrag { double k = 0; double k_angular = 0; };  // F = -k |v| v; on bodies also τ = -k_angular |ω| ω
 // Attractions (Table 2) with an optional Plummer softening length ε ≥ 0:
 // F = C m1 m2 r / (r² + ε²)^(3/2), potential −C m1 m2 / √(r² + ε²). ε = 0 is the
 // report's exact 1/r² law, singular where two particles meet.
@@ -111,6 +111,15 @@ struct ParticleChain {
 };
 using Generator = std::variant<ParticleNet, ParticleChain>;
 
+// How rigid bodies keep their rotation (§2.3.1, §2.3.2): the traditional backend's
+// representation, and renormalisation, applied alike to every representation.
+enum class Rotation { matrix, quaternion };
+enum class Renormalise { none, every_step };
+struct RigidBodySpec {
+  Rotation rotation = Rotation::matrix;      // traditional backend only; cga always uses a rotor
+  Renormalise renormalise = Renormalise::none;
+};
+
 struct Scene {
   std::string name;
   std::string description;
@@ -120,6 +129,7 @@ struct Scene {
   double output_every = 0.01;  // s
   SolverSpec solver;
   ConstraintSolverSpec constraint_solver;
+  RigidBodySpec rigid_body;
   std::vector<Effect> effects;  // ONLY these are simulated
   std::vector<Particle> particles;
   std::vector<Constraint> constraints;

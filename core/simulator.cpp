@@ -18,9 +18,14 @@ void check_implemented(const Scene& scene) {
   };
   if (!scene.generators.empty())
     throw std::logic_error("simulate() needs a scene whose generators are expanded (expand_generators)");
-  if (!scene.bodies.empty()) refuse("/bodies", 5);
   if (scene.find_effect<Collisions>()) refuse("the 'collisions' effect", 6);
-  if (scene.particles.empty()) throw input_error(scene.file.string() + ": the scene has nothing to simulate (no particles)");
+  if (!scene.bodies.empty() &&
+      (scene.find_effect<AttractionBetweenParticles>() || scene.find_effect<AttractionToPoint>()))
+    throw input_error(scene.file.string() +
+                      ": attraction effects act on particles; bodies do not feel them yet, so a scene with bodies "
+                      "cannot list them");
+  if (scene.particles.empty() && scene.bodies.empty())
+    throw input_error(scene.file.string() + ": the scene has nothing to simulate (no particles, no bodies)");
 }
 
 std::vector<int> particle_layout(std::size_t particles) {

@@ -32,6 +32,8 @@ concept Backend = requires(const Scene& scene, const typename B::Model& m, doubl
   // After each accepted step (constraint projection); true when it changed the state.
   { B::after_step(m, state, profile) } -> std::same_as<bool>;
   { B::counters(m) } -> std::same_as<std::map<std::string, std::uint64_t>>;
+  // Mass properties of the scene's bodies, in scene order, for the invariants.
+  { m.props } -> std::convertible_to<const std::vector<BodyProperties>&>;
   { B::metrics(m) } -> std::same_as<std::map<std::string, double>>;
   // Fills sample.particles / sample.bodies in world terms.
   { B::observe(m, y, sample) };
@@ -73,7 +75,7 @@ Run simulate(const Scene& scene) {
     Sample s;
     s.t = t;
     B::observe(model, y, s);
-    fill_invariants(scene, s);
+    fill_invariants(scene, model.props, s);
     run.samples.push_back(std::move(s));
   };
 

@@ -1,0 +1,132 @@
+#include "cga/rigid_body.hpp"
+
+#include "core/error.hpp"
+
+#include <cmath>
+
+namespace gacompare::cga {
+
+namespace {
+using Mat = Eigen::Matrix3d;
+
+Vector3 vec_at(std::span<const double> y, std::size_t i) { return vector3(y[i], y[i + 1], y[i + 2]); }
+Bivector3 biv_at(std::span<const double> y, std::size_t i) { return bivector3(y[i], y[i + 1], y[i + 2]); }
+Rotor3 rotor_at(std::span<const double> y, std::size_t i) { return {{y[i], y[i + 1], y[i + 2], y[i + 3]}}; }
+template <class M>
+void put(std::span<double> y, std::size_t i, const M& m) {
+  for (int k = 0; k < M::size; ++k) y[i + static_cast<std::size_t>(k)] = m.c[static_cast<std::size_t>(k)];
+}
+// Ω = I⁻¹(L) with I given on bivector components.
+Bivector3 apply(const Mat& t, const Bivector3& b) {
+  const Eigen::Vector3d r = t * Eigen::Vector3d(b.c[0], b.c[1], b.c[2]);
+  return bivector3(r[0], r[1], r[2]);
+}
+// The inertia tensor (axial vectors) as a map on bivector components: B = P a with
+// P: (x, y, z) ↦ (e12, e13, e23) = (z, −y, x), so I_biv = P I Pᵀ (P is its own inverse).
+Mat on_bivectors(const Mat& axial) {
+  Mat p;
+  p << 0, 0, 1, 0, -1, 0, 1, 0, 0;
+  return p * axial * p.transpose();
+}
+
+// Offsets within a body's block: x, R, P, L.
+struct Layout {
+  std::size_t x, rot, p, l;
+};
+Layout layout(std::size_t b) {
+  const std::size_t base = b * RigidBodies::Model::stride;
+  return {base, base + 3, base + 7, base + 10};
+}
+}  // namespace
+
+RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vector<core::BodyProperties>& props) {
+  Model m;
+  m.renormalise = scene.rigid_body.renormalise;
+  for (const auto& e : scene.effects) {
+    if (auto* g = std::get_if<core::Gravity>(&e)) m.gravity = g->g;
+    if (auto* d = std::get_if<core::LinearDrag>(&e)) m.linear_k = d->k, m.linear_k_angular = d->k_angular;
+    if (auto* d = std::get_if<core::QuadraticDrag>(&e)) m.quadratic_k = d->k, m.quadratic_k_angular = d->k_angular;
+  }
+  m.y0.assign(Model::stride * scene.bodies.size(), 0.0);
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const auto& body = scene.bodies[b];
+    const auto& p = props[b];
+    m.names.push_back(body.name);
+    const bool fixed = body.is_static;
+    const Mat inertia = on_bivectors(p.inertia);
+    m.bodies.push_back({fixed ? 0.0 : 1.0 / p.mass, fixed ? Mat::Zero().eval() : inertia.inverse().eval(), inertia,
+                        p.mass});
+    const Layout at = layout(b);
+    const Eigen::Quaterniond q(body.orientation[0], body.orientation[1], body.orientation[2], body.orientation[3]);
+    const Rotor3 r = rotor_from_quaternion(q);
+    put(m.y0, at.x, vector3(body.position));
+    put(m.y0, at.rot, r);
+    if (!fixed) {
+      put(m.y0, at.p, p.mass * vector3(body.velocity));
+      // L = R I(R̃ Ω R) R̃ with Ω the bivector of the world angular velocity.
+      const Bivector3 omega_body = sandwich(reverse(r), bivector_of_axial(vector3(body.angular_velocity)));
+      put(m.y0, at.l, sandwich(r, apply(inertia, omega_body)));
+    }
+  }
+  return m;
+}
+
+void RigidBodies::initial_state(const Model& m, std::span<double> y) {
+  std::copy(m.y0.begin(), m.y0.end(), y.begin());
+}
+
+void RigidBodies::derivative(const Model& m, std::span<const double> y, std::span<double> dydt) {
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Body& body = m.bodies[b];
+    const Layout at = layout(b);
+    std::fill(dydt.begin() + static_cast<long>(at.x), dydt.begin() + static_cast<long>(at.x + Model::stride), 0.0);
+    if (body.inv_mass == 0) continue;  // static: never moves
+    const Vector3 v = body.inv_mass * vec_at(y, at.p);
+    const Rotor3 r = rotor_at(y, at.rot);
+    const Bivector3 L = biv_at(y, at.l);
+    const Bivector3 omega = sandwich(r, apply(body.inv_inertia, sandwich(reverse(r), L)));  // §2.3.2
+    const double speed = std::sqrt(scalar_product(v, v)), spin = std::sqrt(-scalar_product(omega, omega));
+    const Vector3 force = body.mass * vector3(m.gravity) - m.linear_k * v - (m.quadratic_k * speed) * v;
+    const Bivector3 torque = -m.linear_k_angular * omega - (m.quadratic_k_angular * spin) * omega;
+    put(dydt, at.x, v);
+    put(dydt, at.rot, -0.5 * (omega * r));  // eq. 35
+    put(dydt, at.p, force);
+    put(dydt, at.l, torque);
+  }
+}
+
+bool RigidBodies::renormalise(const Model& m, std::span<double> y) {
+  if (m.renormalise == core::Renormalise::none) return false;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Layout at = layout(b);
+    const Rotor3 r = rotor_at(y, at.rot);
+    put(y, at.rot, r / std::sqrt(norm2(r)));  // R / √(R R̃)
+  }
+  return true;
+}
+
+double RigidBodies::rotation_drift(const Model& m, std::span<const double> y) {
+  double worst = 0;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) worst = std::max(worst, std::abs(norm2(rotor_at(y, layout(b).rot)) - 1.0));
+  return worst;
+}
+
+void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sample& s) {
+  s.bodies.resize(m.bodies.size());
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Body& body = m.bodies[b];
+    const Layout at = layout(b);
+    const Rotor3 r = rotor_at(y, at.rot);
+    // The reported orientation is the stored rotor normalised; rotation_drift()
+    // says how far the stored one is from a rotor.
+    const Eigen::Quaterniond q = quaternion_from_rotor(r / std::sqrt(norm2(r)));
+    auto& out = s.bodies[b];
+    out.position = to_eigen(vec_at(y, at.x));
+    out.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+    out.velocity = to_eigen(body.inv_mass * vec_at(y, at.p));
+    out.angular_velocity = to_eigen(axial(sandwich(r, apply(body.inv_inertia, sandwich(reverse(r), biv_at(y, at.l))))));
+  }
+  s.rotation_drift = rotation_drift(m, y);
+}
+
+}  // namespace gacompare::cga

@@ -1,0 +1,169 @@
+#include "traditional/rigid_body.hpp"
+
+#include "core/error.hpp"
+
+#include <cmath>
+
+namespace gacompare::traditional {
+
+namespace {
+using Vec = Eigen::Vector3d;
+using Mat = Eigen::Matrix3d;
+
+Vec vec_at(std::span<const double> y, std::size_t i) { return Vec(y[i], y[i + 1], y[i + 2]); }
+void put(std::span<double> y, std::size_t i, const Vec& v) {
+  for (int k = 0; k < 3; ++k) y[i + k] = v[k];
+}
+Mat matrix_at(std::span<const double> y, std::size_t i) {
+  Mat r;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) r(a, b) = y[i + 3 * a + b];
+  return r;
+}
+void put(std::span<double> y, std::size_t i, const Mat& r) {
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) y[i + 3 * a + b] = r(a, b);
+}
+// The stored quaternion, not normalised: its drift is what renormalisation is for.
+Eigen::Quaterniond quat_at(std::span<const double> y, std::size_t i) {
+  return Eigen::Quaterniond(y[i], y[i + 1], y[i + 2], y[i + 3]);
+}
+Mat skew(const Vec& w) {  // w* of eq. 32: w* v = w × v
+  Mat s;
+  s << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return s;
+}
+
+// Offsets within a body's block: x, rotation, P, L.
+struct Layout {
+  std::size_t x, rot, p, l;
+};
+Layout layout(const RigidBodies::Model& m, std::size_t b) {
+  const std::size_t base = b * m.stride, rot = m.rotation == core::Rotation::matrix ? 9 : 4;
+  return {base, base + 3, base + 3 + rot, base + 6 + rot};
+}
+Mat rotation(const RigidBodies::Model& m, std::span<const double> y, const Layout& at) {
+  return m.rotation == core::Rotation::matrix ? matrix_at(y, at.rot) : quat_at(y, at.rot).toRotationMatrix();
+}
+}  // namespace
+
+RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vector<core::BodyProperties>& props) {
+  Model m;
+  m.rotation = scene.rigid_body.rotation;
+  m.renormalise = scene.rigid_body.renormalise;
+  m.stride = m.rotation == core::Rotation::matrix ? 18 : 13;
+  for (const auto& e : scene.effects) {
+    if (auto* g = std::get_if<core::Gravity>(&e)) m.gravity = g->g;
+    if (auto* d = std::get_if<core::LinearDrag>(&e)) m.linear_k = d->k, m.linear_k_angular = d->k_angular;
+    if (auto* d = std::get_if<core::QuadraticDrag>(&e)) m.quadratic_k = d->k, m.quadratic_k_angular = d->k_angular;
+  }
+  m.y0.assign(m.stride * scene.bodies.size(), 0.0);
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const auto& body = scene.bodies[b];
+    const auto& p = props[b];
+    m.names.push_back(body.name);
+    const bool fixed = body.is_static;
+    m.bodies.push_back({fixed ? 0.0 : 1.0 / p.mass, fixed ? Mat::Zero().eval() : p.inertia.inverse().eval(), p.inertia,
+                        p.mass});
+    const Layout at = layout(m, b);
+    const Eigen::Quaterniond q(body.orientation[0], body.orientation[1], body.orientation[2], body.orientation[3]);
+    const Mat r = q.toRotationMatrix();
+    put(m.y0, at.x, body.position);
+    if (m.rotation == core::Rotation::matrix) {
+      put(m.y0, at.rot, r);
+    } else {
+      for (int k = 0; k < 4; ++k) m.y0[at.rot + k] = body.orientation[k];
+    }
+    if (!fixed) {
+      put(m.y0, at.p, Vec(p.mass * body.velocity));
+      put(m.y0, at.l, Vec(r * p.inertia * r.transpose() * body.angular_velocity));  // L = I(t) ω
+    }
+  }
+  return m;
+}
+
+void RigidBodies::initial_state(const Model& m, std::span<double> y) {
+  std::copy(m.y0.begin(), m.y0.end(), y.begin());
+}
+
+void RigidBodies::derivative(const Model& m, std::span<const double> y, std::span<double> dydt) {
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Body& body = m.bodies[b];
+    const Layout at = layout(m, b);
+    std::fill(dydt.begin() + static_cast<long>(at.x), dydt.begin() + static_cast<long>(at.x + m.stride), 0.0);
+    if (body.inv_mass == 0) continue;  // static: never moves
+    const Vec P = vec_at(y, at.p), L = vec_at(y, at.l);
+    const Vec v = body.inv_mass * P;
+    const Mat r = rotation(m, y, at);
+    const Vec w = r * (body.inv_inertia * (r.transpose() * L));  // ω = R I⁻¹ Rᵀ L
+    Vec force = body.mass * m.gravity - m.linear_k * v - m.quadratic_k * v.norm() * v;
+    Vec torque = -m.linear_k_angular * w - m.quadratic_k_angular * w.norm() * w;
+    put(dydt, at.x, v);
+    if (m.rotation == core::Rotation::matrix) {
+      put(dydt, at.rot, Mat(skew(w) * r));  // eq. 33
+    } else {
+      const Eigen::Quaterniond q = quat_at(y, at.rot);
+      const Eigen::Quaterniond qd = Eigen::Quaterniond(0, w.x(), w.y(), w.z()) * q;
+      dydt[at.rot] = 0.5 * qd.w();
+      dydt[at.rot + 1] = 0.5 * qd.x();
+      dydt[at.rot + 2] = 0.5 * qd.y();
+      dydt[at.rot + 3] = 0.5 * qd.z();
+    }
+    put(dydt, at.p, force);
+    put(dydt, at.l, torque);
+  }
+}
+
+bool RigidBodies::renormalise(const Model& m, std::span<double> y) {
+  if (m.renormalise == core::Renormalise::none) return false;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Layout at = layout(m, b);
+    if (m.rotation == core::Rotation::matrix) {
+      // Gram–Schmidt on the columns (the rotated body axes, eq. 27).
+      Mat r = matrix_at(y, at.rot);
+      const Vec c0 = r.col(0).normalized();
+      const Vec c1 = (r.col(1) - c0.dot(r.col(1)) * c0).normalized();
+      r.col(0) = c0;
+      r.col(1) = c1;
+      r.col(2) = c0.cross(c1);
+      put(y, at.rot, r);
+    } else {
+      const double n = quat_at(y, at.rot).norm();
+      for (int k = 0; k < 4; ++k) y[at.rot + k] /= n;
+    }
+  }
+  return true;
+}
+
+double RigidBodies::rotation_drift(const Model& m, std::span<const double> y) {
+  double worst = 0;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Layout at = layout(m, b);
+    const double d = m.rotation == core::Rotation::matrix
+                         ? (matrix_at(y, at.rot).transpose() * matrix_at(y, at.rot) - Mat::Identity()).norm()
+                         : std::abs(quat_at(y, at.rot).squaredNorm() - 1.0);
+    worst = std::max(worst, d);
+  }
+  return worst;
+}
+
+void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sample& s) {
+  s.bodies.resize(m.bodies.size());
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Body& body = m.bodies[b];
+    const Layout at = layout(m, b);
+    const Mat r = rotation(m, y, at);
+    // The reported orientation is the stored rotation's nearest unit quaternion;
+    // rotation_drift() says how far the stored one is from a rotation.
+    const Eigen::Quaterniond q = m.rotation == core::Rotation::matrix ? Eigen::Quaterniond(r).normalized()
+                                                                      : quat_at(y, at.rot).normalized();
+    auto& out = s.bodies[b];
+    out.position = vec_at(y, at.x);
+    out.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+    out.velocity = body.inv_mass * vec_at(y, at.p);
+    out.angular_velocity = r * (body.inv_inertia * (r.transpose() * vec_at(y, at.l)));
+  }
+  s.rotation_drift = rotation_drift(m, y);
+}
+
+}  // namespace gacompare::traditional
