@@ -156,9 +156,21 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
   }
   row("samples", [](const BackendResult& b) { return std::to_string(b.run.samples.size()); });
   row("repeats bit-identical", [](const BackendResult& b) { return std::string(b.deterministic ? "yes" : "**no**"); });
-  if (r.backends.size() > 1)
-    o << "\nLargest distance between the backends' particle positions over all samples: "
-      << fmt("%.3e", max_divergence(r)) << " m.\n";
+  bool bodies = false;
+  for (const auto& b : r.backends)
+    bodies = bodies || (!b.run.samples.empty() && !b.run.samples.front().bodies.empty());
+  if (bodies)
+    row("largest rotation drift (distance of the stored rotation from a rotation)", [](const BackendResult& b) {
+      double worst = 0;
+      for (const auto& s : b.run.samples) worst = std::max(worst, s.rotation_drift);
+      return fmt("%.3e", worst);
+    });
+  if (r.backends.size() > 1) {
+    o << "\nLargest distance between the backends' positions over all samples: " << fmt("%.3e", max_divergence(r))
+      << " m";
+    if (bodies) o << "; largest angle between their orientations: " << fmt("%.3e", max_orientation_divergence(r)) << " rad";
+    o << ".\n";
+  }
   return o.str();
 }
 

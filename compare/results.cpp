@@ -87,9 +87,27 @@ double max_divergence(const SceneResult& r) {
   for (std::size_t b = 1; b < r.backends.size(); ++b) {
     const auto& a = r.backends[0].run.samples;
     const auto& c = r.backends[b].run.samples;
-    for (std::size_t k = 0; k < std::min(a.size(), c.size()); ++k)
+    for (std::size_t k = 0; k < std::min(a.size(), c.size()); ++k) {
       for (std::size_t i = 0; i < a[k].particles.size(); ++i)
         worst = std::max(worst, (a[k].particles[i].position - c[k].particles[i].position).norm());
+      for (std::size_t i = 0; i < a[k].bodies.size(); ++i)
+        worst = std::max(worst, (a[k].bodies[i].position - c[k].bodies[i].position).norm());
+    }
+  }
+  return worst;
+}
+
+double max_orientation_divergence(const SceneResult& r) {
+  double worst = 0;
+  for (std::size_t b = 1; b < r.backends.size(); ++b) {
+    const auto& a = r.backends[0].run.samples;
+    const auto& c = r.backends[b].run.samples;
+    for (std::size_t k = 0; k < std::min(a.size(), c.size()); ++k)
+      for (std::size_t i = 0; i < a[k].bodies.size(); ++i) {
+        // The angle of the rotation taking one orientation to the other: 2 acos |q1·q2|.
+        const double d = std::min(1.0, std::abs(a[k].bodies[i].orientation.dot(c[k].bodies[i].orientation)));
+        worst = std::max(worst, 2 * std::acos(d));
+      }
   }
   return worst;
 }
@@ -108,7 +126,9 @@ nlohmann::ordered_json results_json(const SceneResult& r, const MachineInfo& mac
             {"build_type", machine.build_type}}},
           {"repeats", repeats},
           {"runs", runs},
-          {"divergence", {{"max_position_difference", max_divergence(r)}}}};
+          {"divergence",
+           {{"max_position_difference", max_divergence(r)},
+            {"max_orientation_difference_rad", max_orientation_divergence(r)}}}};
 }
 
 }  // namespace gacompare::compare

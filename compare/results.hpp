@@ -10,9 +10,11 @@ namespace gacompare::compare {
 // The issue #2 schema: {"tool", "scene", "machine", "repeats", "runs": [...]}.
 nlohmann::ordered_json results_json(const SceneResult& r, const MachineInfo& machine, int repeats);
 
-// Largest distance between the backends' particle positions over all samples
-// (0 with fewer than two backends): the divergence between backends.
+// Largest distance between the backends' particle and body positions over all
+// samples (0 with fewer than two backends): the divergence between backends.
 double max_divergence(const SceneResult& r);
+// Largest angle (rad) between the backends' body orientations over all samples.
+double max_orientation_divergence(const SceneResult& r);
 
 // max over samples of |E(t) − E(0)|, relative to the largest of |E(0)|, the
 // kinetic and the potential energy seen in the run (E(0) alone can be 0): the
