@@ -36,7 +36,7 @@ struct Simulation {
   }
   static void derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
                          Profile& profile) {
-    Particles::derivative(m.particles, t, y.first(m.offset), dydt.first(m.offset), profile);
+    if (m.offset > 0) Particles::derivative(m.particles, t, y.first(m.offset), dydt.first(m.offset), profile);
     if (!m.bodies.bodies.empty()) {
       ScopedStage timed(profile, Stage::forces);
       Bodies::derivative(m.bodies, y.subspan(m.offset), dydt.subspan(m.offset));
