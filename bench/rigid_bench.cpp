@@ -38,7 +38,7 @@ void derivative(benchmark::State& state, const char* rotation) {
   std::vector<double> y(Bodies::state_size(model)), dy(y.size());
   Bodies::initial_state(model, y);
   for (auto _ : state) {
-    Bodies::derivative(model, y, dy);
+    Bodies::derivative(model, 0.0, y, dy);
     benchmark::DoNotOptimize(dy.data());
     benchmark::ClobberMemory();
   }

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gacompare::cga {
@@ -46,6 +47,11 @@ RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vecto
     if (auto* g = std::get_if<core::Gravity>(&e)) m.gravity = g->g;
     if (auto* d = std::get_if<core::LinearDrag>(&e)) m.linear_k = d->k, m.linear_k_angular = d->k_angular;
     if (auto* d = std::get_if<core::QuadraticDrag>(&e)) m.quadratic_k = d->k, m.quadratic_k_angular = d->k_angular;
+    if (auto* a = std::get_if<core::AppliedForces>(&e))
+      for (const auto& f : a->forces) {
+        const auto it = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const auto& bd) { return bd.name == f.body; });
+        m.pushes.push_back({static_cast<std::size_t>(it - scene.bodies.begin()), f.point, f.force, f.from, f.until});
+      }
   }
   m.y0.assign(Model::stride * scene.bodies.size(), 0.0);
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -75,7 +81,7 @@ void RigidBodies::initial_state(const Model& m, std::span<double> y) {
   std::copy(m.y0.begin(), m.y0.end(), y.begin());
 }
 
-void RigidBodies::derivative(const Model& m, std::span<const double> y, std::span<double> dydt) {
+void RigidBodies::derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt) {
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const Body& body = m.bodies[b];
     const Layout at = layout(b);
@@ -86,8 +92,14 @@ void RigidBodies::derivative(const Model& m, std::span<const double> y, std::spa
     const Bivector3 L = biv_at(y, at.l);
     const Bivector3 omega = sandwich(r, apply(body.inv_inertia, sandwich(reverse(r), L)));  // §2.3.2
     const double speed = std::sqrt(scalar_product(v, v)), spin = std::sqrt(-scalar_product(omega, omega));
-    const Vector3 force = body.mass * vector3(m.gravity) - m.linear_k * v - (m.quadratic_k * speed) * v;
-    const Bivector3 torque = -m.linear_k_angular * omega - (m.quadratic_k_angular * spin) * omega;
+    Vector3 force = body.mass * vector3(m.gravity) - m.linear_k * v - (m.quadratic_k * speed) * v;
+    Bivector3 torque = -m.linear_k_angular * omega - (m.quadratic_k_angular * spin) * omega;
+    for (const auto& push : m.pushes)
+      if (push.body == b && t >= push.from && t < push.until) {
+        const Vector3 f = vector3(push.force);
+        force += f;
+        torque += sandwich(r, vector3(push.point)) ^ f;  // τ = (R p R̃) ∧ F
+      }
     put(dydt, at.x, v);
     put(dydt, at.rot, -0.5 * (omega * r));  // eq. 35
     put(dydt, at.p, force);

@@ -38,6 +38,8 @@ struct RigidBodies {
     std::vector<std::string> names;
     std::vector<Body> bodies;
     std::vector<double> y0;        // the initial state, packed
+    struct Push { std::size_t body; Eigen::Vector3d point, force; double from, until; };
+    std::vector<Push> pushes;      // the applied_forces effect: body point (body frame), world force
     Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
     double linear_k = 0, linear_k_angular = 0, quadratic_k = 0, quadratic_k_angular = 0;
     static constexpr std::size_t stride = 13;  // doubles per body
@@ -46,7 +48,7 @@ struct RigidBodies {
   static Model build(const core::Scene& scene, const std::vector<core::BodyProperties>& props);
   static std::size_t state_size(const Model& m) { return m.stride * m.bodies.size(); }
   static void initial_state(const Model& m, std::span<double> y);
-  static void derivative(const Model& m, std::span<const double> y, std::span<double> dydt);
+  static void derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt);
   // R / √(R R̃) (§2.3.2); true if the scene asks for it (and so the state changed).
   static bool renormalise(const Model& m, std::span<double> y);
   static void observe(const Model& m, std::span<const double> y, core::Sample& s);

@@ -58,8 +58,9 @@ struct ParticleSystem {
       m.x0.push_back(Ops::from(p.position));
       m.v0.push_back(Ops::from(p.pinned ? Vec3::Zero().eval() : p.velocity));
     }
-    for (const auto& e : scene.effects)
-      if (!std::holds_alternative<Collisions>(e)) m.effects.push_back(convert(e));
+    for (const auto& e : scene.effects)  // collisions and applied forces act on bodies only
+      if (!std::holds_alternative<Collisions>(e) && !std::holds_alternative<AppliedForces>(e))
+        m.effects.push_back(convert(e));
     std::vector<double> y0(state_size(m));
     initial_state(m, y0);
     m.constraints = Constraints::build(scene, m.names, y0);

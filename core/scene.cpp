@@ -57,7 +57,7 @@ std::optional<SolverMethod> solver_method_from_string(std::string_view s) {
 std::string_view effect_name(const Effect& e) {
   static constexpr std::array<std::string_view, std::variant_size_v<Effect>> names = {
       "gravity",   "linear_drag", "quadratic_drag", "attraction_between_particles", "attraction_to_point",
-      "collisions"};
+      "collisions", "applied_forces"};
   return names[e.index()];
 }
 
@@ -340,9 +340,9 @@ bool spans_volume(const std::vector<Vec3>& p) {
   return scale > 0 && std::abs(n.dot(p[c] - p[0])) > 1e-12 * scale * scale * scale;
 }
 
-constexpr std::array<std::string_view, 6> kEffectTypes = {
+constexpr std::array<std::string_view, 7> kEffectTypes = {
     "gravity",   "linear_drag", "quadratic_drag", "attraction_between_particles", "attraction_to_point",
-    "collisions"};
+    "collisions", "applied_forces"};
 constexpr std::array<std::string_view, 6> kConstraintTypes = {"distance_to_point", "distance", "on_plane",
                                                                "on_line",           "on_circle", "on_helix"};
 constexpr std::array<std::string_view, 3> kDrift = {"off", "baumgarte", "projection"};
@@ -377,10 +377,10 @@ class Loader {
     s.solver = solver(o.req("solver"));
     if (auto c = o.opt("constraint_solver")) s.constraint_solver = constraint_solver(*c);
     if (auto c = o.opt("rigid_body")) s.rigid_body = rigid_body(*c);
-    each(o.opt("effects"), [&](const Val& v) { s.effects.push_back(effect(v)); });
     each(o.opt("particles"), [&](const Val& v) { s.particles.push_back(particle(v)); });
     each(o.opt("bodies"), [&](const Val& v) { s.bodies.push_back(body(v)); });
     each(o.opt("generators"), [&](const Val& v) { s.generators.push_back(generator(v)); });
+    each(o.opt("effects"), [&](const Val& v) { s.effects.push_back(effect(v)); });  // after the bodies they name
     each(o.opt("constraints"), [&](const Val& v) { s.constraints.push_back(constraint(v, s)); });
     return s;
   }
@@ -458,6 +458,26 @@ class Loader {
       Obj o(v, keys);
       AttractionToPoint a{vec3(o.req("point")), number(o.req("D")), 0};
       if (auto x = o.opt("softening")) a.softening = number(*x, Range::non_negative);
+      return a;
+    }
+    if (type == "applied_forces") {
+      static constexpr Keys<2> keys = {"type", "forces"};
+      static constexpr Keys<5> force_keys = {"body", "point", "force", "from", "until"};
+      Obj o(v, keys);
+      AppliedForces a;
+      each(o.req("forces"), [&](const Val& f) {
+        Obj fo(f, force_keys);
+        AppliedForce af;
+        af.body = body_ref(fo.req("body"));
+        af.point = vec3(fo.req("point"));
+        af.force = vec3(fo.req("force"));
+        if (auto x = fo.opt("from")) af.from = number(*x, Range::non_negative);
+        if (auto x = fo.opt("until")) {
+          af.until = number(*x, Range::positive);
+          if (!(af.until > af.from)) x->expected("a time > from (" + fmt(af.from) + ")");
+        }
+        a.forces.push_back(af);
+      });
       return a;
     }
     static constexpr Keys<3> keys = {"type", "restitution", "penetration_tolerance"};
@@ -636,6 +656,16 @@ class Loader {
     if (auto [it, fresh] = names_.emplace(n, Named{kind, v.path}); !fresh)
       v.fail("expected a name not used by another particle, body or generator, got " + quote(n) +
              " (already the " + it->second.kind + " at " + it->second.path + ")");
+    return n;
+  }
+
+  // A body given in "bodies".
+  std::string body_ref(const Val& v) const {
+    const std::string what = "the name of a body";
+    if (!v.j || !v.j->is_string()) v.expected(what);
+    std::string n = v.j->get<std::string>();
+    if (auto it = names_.find(n); it != names_.end() && std::string_view(it->second.kind) == "body") return n;
+    v.expected(what);
     return n;
   }
 

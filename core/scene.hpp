@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <variant>
@@ -35,8 +36,22 @@ struct QuadraticDrag { double k = 0; double k_angular = 0; };  // F = -k |v| v; 
 struct AttractionBetweenParticles { double C = 0; double softening = 0; };  // towards each other
 struct AttractionToPoint { Vec3 point{0, 0, 0}; double D = 0; double softening = 0; };  // F = D m / r², towards point
 struct Collisions { double restitution = 0.5; double penetration_tolerance = 1e-4; };
+// Forces applied at points of bodies (§2.3.1: L̇ = τ): each pushes body `body` at
+// `point` (body coordinates, from the centre of mass) with `force` (world, N)
+// while from <= t < until, producing the torque (R p) × F — in cga the bivector
+// (R p) ∧ F. A switch on or off is integrated to within one step's impulse (an
+// RK stage at the switching time sees the new state of the force); put switching
+// times on output times so that no step straddles them.
+struct AppliedForce {
+  std::string body;
+  Vec3 point{0, 0, 0};
+  Vec3 force{0, 0, 0};
+  double from = 0;
+  double until = std::numeric_limits<double>::infinity();
+};
+struct AppliedForces { std::vector<AppliedForce> forces; };
 using Effect = std::variant<Gravity, LinearDrag, QuadraticDrag, AttractionBetweenParticles,
-                            AttractionToPoint, Collisions>;
+                            AttractionToPoint, Collisions, AppliedForces>;
 std::string_view effect_name(const Effect& e);  // the scene's "type" string
 
 struct Particle {

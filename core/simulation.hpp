@@ -39,7 +39,7 @@ struct Simulation {
     if (m.offset > 0) Particles::derivative(m.particles, t, y.first(m.offset), dydt.first(m.offset), profile);
     if (!m.bodies.bodies.empty()) {
       ScopedStage timed(profile, Stage::forces);
-      Bodies::derivative(m.bodies, y.subspan(m.offset), dydt.subspan(m.offset));
+      Bodies::derivative(m.bodies, t, y.subspan(m.offset), dydt.subspan(m.offset));
     }
   }
   static bool after_step(const Model& m, std::vector<double>& y, Profile& profile) {

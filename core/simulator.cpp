@@ -24,6 +24,11 @@ void check_implemented(const Scene& scene) {
     throw input_error(scene.file.string() +
                       ": attraction effects act on particles; bodies do not feel them yet, so a scene with bodies "
                       "cannot list them");
+  if (const auto* a = scene.find_effect<AppliedForces>())
+    for (const auto& f : a->forces)
+      for (const auto& b : scene.bodies)
+        if (b.name == f.body && b.is_static)
+          throw input_error(scene.file.string() + ": applied force on static body '" + b.name + "', which cannot move");
   if (scene.particles.empty() && scene.bodies.empty())
     throw input_error(scene.file.string() + ": the scene has nothing to simulate (no particles, no bodies)");
 }

@@ -202,7 +202,39 @@ TYPED_TEST_P(RigidCases, ExtremeInertiaAndMassesStayFiniteAndConservative) {
   }
 }
 
-REGISTER_TYPED_TEST_SUITE_P(RigidCases, FreeFlightFollowsTheParabolaAndKeepsItsSpin,
+// A force F at a body point p (body frame) for a short time T = 1e-3 s, from
+// rest without gravity: P(T) = F T, and L(T) = ∫ (R(t) p) × F dt = T (p × F) up
+// to the rotation the torque itself causes, ~ ½ |τ| T² / I_min rad: 2e-4
+// relative here. A force switched off at t = until is integrated to within one
+// step's impulse: the last RK4 step's end stage already sees it off (measured
+// F h/6 with h = 1e-5 s), so the bounds add |F| h and |τ| h. A couple (F at p,
+// −F at −p) adds no linear momentum.
+TYPED_TEST_P(RigidCases, AppliedForcesGiveForceAndTorque) {
+  const auto scene = rigid_scene(
+      R"({"name": "b", "shape": {"box": [0.1, 0.4, 0.9]}, "mass": 1.0, "position": [0, 0, 0],
+          "orientation": [0.9238795325112867, 0, 0.3826834323650898, 0]})",
+      R"(, "effects": [{"type": "applied_forces", "forces": [
+          {"body": "b", "point": [0.05, 0.2, 0.1], "force": [0, 0, 10], "until": 1e-3},
+          {"body": "b", "point": [0.05, -0.2, -0.3], "force": [3, 0, 0], "until": 1e-3},
+          {"body": "b", "point": [-0.05, 0.2, 0.3], "force": [-3, 0, 0], "until": 1e-3}]}])",
+      TypeParam::options, 2e-3, 1e-3, R"({"method": "rk4", "dt": 1e-5})");
+  const core::Run run = core::simulate<typename TypeParam::Backend>(scene);
+  ASSERT_FALSE(run.error.has_value()) << *run.error;
+  ASSERT_EQ(run.samples.size(), 3u);
+  const Eigen::Quaterniond q(0.9238795325112867, 0, 0.3826834323650898, 0);
+  const Eigen::Vector3d F(0, 0, 10);
+  const Eigen::Vector3d torque = (q * Eigen::Vector3d(0.05, 0.2, 0.1)).cross(F) +
+                                 (q * Eigen::Vector3d(0.05, -0.2, -0.3)).cross(Eigen::Vector3d(3, 0, 0)) +
+                                 (q * Eigen::Vector3d(-0.05, 0.2, 0.3)).cross(Eigen::Vector3d(-3, 0, 0));
+  for (std::size_t k = 1; k < 3; ++k) {  // the push ends at t = 1e-3: nothing changes after
+    const auto& s = run.samples[k];
+    EXPECT_LT((s.linear_momentum - 1e-3 * F).norm(), 1e-5 * F.norm());
+    EXPECT_LT((s.angular_momentum - 1e-3 * torque).norm(), (2e-4 * 1e-3 + 1e-5) * torque.norm());
+  }
+  EXPECT_LT((run.samples[2].angular_momentum - run.samples[1].angular_momentum).norm(), 1e-15);
+}
+
+REGISTER_TYPED_TEST_SUITE_P(RigidCases, AppliedForcesGiveForceAndTorque, FreeFlightFollowsTheParabolaAndKeepsItsSpin,
                             DzhanibekovFlipMatchesTheEllipticPeriod, SymmetricTopPrecessesAtLOverI,
                             RotationDriftGrowsWithoutRenormalisationAndNotWithIt,
                             EulerDistortsTheRotationAsTheReportSaw, ExtremeInertiaAndMassesStayFiniteAndConservative);

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gacompare::traditional {
@@ -56,6 +57,11 @@ RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vecto
     if (auto* g = std::get_if<core::Gravity>(&e)) m.gravity = g->g;
     if (auto* d = std::get_if<core::LinearDrag>(&e)) m.linear_k = d->k, m.linear_k_angular = d->k_angular;
     if (auto* d = std::get_if<core::QuadraticDrag>(&e)) m.quadratic_k = d->k, m.quadratic_k_angular = d->k_angular;
+    if (auto* a = std::get_if<core::AppliedForces>(&e))
+      for (const auto& f : a->forces) {
+        const auto it = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const auto& bd) { return bd.name == f.body; });
+        m.pushes.push_back({static_cast<std::size_t>(it - scene.bodies.begin()), f.point, f.force, f.from, f.until});
+      }
   }
   m.y0.assign(m.stride * scene.bodies.size(), 0.0);
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -86,7 +92,7 @@ void RigidBodies::initial_state(const Model& m, std::span<double> y) {
   std::copy(m.y0.begin(), m.y0.end(), y.begin());
 }
 
-void RigidBodies::derivative(const Model& m, std::span<const double> y, std::span<double> dydt) {
+void RigidBodies::derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt) {
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const Body& body = m.bodies[b];
     const Layout at = layout(m, b);
@@ -98,6 +104,11 @@ void RigidBodies::derivative(const Model& m, std::span<const double> y, std::spa
     const Vec w = r * (body.inv_inertia * (r.transpose() * L));  // ω = R I⁻¹ Rᵀ L
     Vec force = body.mass * m.gravity - m.linear_k * v - m.quadratic_k * v.norm() * v;
     Vec torque = -m.linear_k_angular * w - m.quadratic_k_angular * w.norm() * w;
+    for (const auto& push : m.pushes)
+      if (push.body == b && t >= push.from && t < push.until) {
+        force += push.force;
+        torque += (r * push.point).cross(push.force);  // τ = (R p) × F
+      }
     put(dydt, at.x, v);
     if (m.rotation == core::Rotation::matrix) {
       put(dydt, at.rot, Mat(skew(w) * r));  // eq. 33
