@@ -36,6 +36,7 @@ namespace {
 using namespace gacompare;
 
 struct Cell {
+  Cell(std::string m, std::string b, std::string p) : method(std::move(m)), backend(std::move(b)), param(std::move(p)) {}
   std::string method, backend, param;
   double error_final = 0, error_rms = 0;
   std::vector<double> seconds;
@@ -132,7 +133,7 @@ void sweep(const core::Scene& base, int repeats) {
   for (const auto& [spec, param] : specs) {
     core::Scene s = base;
     s.solver = spec;
-    Cell tc{std::string(core::to_string(spec.method)), "traditional", param}, cc = tc;
+    Cell tc(std::string(core::to_string(spec.method)), "traditional", param), cc = tc;
     cc.backend = "cga";
     std::vector<double> warm;
     try {
@@ -163,7 +164,7 @@ void sweep(const core::Scene& base, int repeats) {
       const double tol = std::pow(10.0, -e);
       char p[32];
       std::snprintf(p, sizeof p, "tol %.0e", tol);
-      Cell c{"odeint cash_karp54", "traditional", p};
+      Cell c("odeint cash_karp54", "traditional", p);
       std::vector<double> warm;
       odeint_run(base, tol, warm, c.evaluations);
       core::Run run;

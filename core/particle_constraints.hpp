@@ -169,8 +169,9 @@ struct ParticleConstraints {
     if (auto* k = std::get_if<OnPlane>(&c))
       return PlaneConstraint<V>{index_of(names, k->particle), Ops::from(k->point), Ops::from(k->normal)};
     if (auto* k = std::get_if<OnLine>(&c)) {
-      const V d = Ops::from(k->direction), u1 = perpendicular(d);
-      return LineConstraint<V>{index_of(names, k->particle), Ops::from(k->point), u1, Ops::cross(d, u1)};
+      const V d = Ops::from(k->direction), u1 = perpendicular(d), u2 = Ops::cross(d, u1);
+      LineConstraint<V> line{index_of(names, k->particle), Ops::from(k->point), u1, u2};
+      return line;
     }
     if (auto* k = std::get_if<OnCircle>(&c))
       return CircleConstraint<V>{index_of(names, k->particle), Ops::from(k->center), Ops::from(k->normal), k->radius};
@@ -186,8 +187,9 @@ struct ParticleConstraints {
     const V off = d0 - dot(axis, d0) * axis;
     const V e = dot(off, off) > 0 ? Ops::unit(off) : perpendicular(axis);
     const V f = Ops::cross(axis, e);
-    return HelixConstraint<V>{p, center, V(std::cos(th0) * e - std::sin(th0) * f),
-                              V(std::sin(th0) * e + std::cos(th0) * f), axis, h.radius, k};
+    const V u = std::cos(th0) * e - std::sin(th0) * f, v = std::sin(th0) * e + std::cos(th0) * f;
+    HelixConstraint<V> helix{p, center, u, v, axis, h.radius, k};
+    return helix;
   }
 };
 
