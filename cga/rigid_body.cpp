@@ -43,16 +43,7 @@ Layout layout(std::size_t b) {
 RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vector<core::BodyProperties>& props) {
   Model m;
   m.renormalise = scene.rigid_body.renormalise;
-  for (const auto& e : scene.effects) {
-    if (auto* g = std::get_if<core::Gravity>(&e)) m.gravity = g->g;
-    if (auto* d = std::get_if<core::LinearDrag>(&e)) m.linear_k = d->k, m.linear_k_angular = d->k_angular;
-    if (auto* d = std::get_if<core::QuadraticDrag>(&e)) m.quadratic_k = d->k, m.quadratic_k_angular = d->k_angular;
-    if (auto* a = std::get_if<core::AppliedForces>(&e))
-      for (const auto& f : a->forces) {
-        const auto it = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const auto& bd) { return bd.name == f.body; });
-        m.pushes.push_back({static_cast<std::size_t>(it - scene.bodies.begin()), f.point, f.force, f.from, f.until});
-      }
-  }
+  m.effects = core::body_effects(scene);
   m.y0.assign(Model::stride * scene.bodies.size(), 0.0);
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const auto& body = scene.bodies[b];
@@ -92,9 +83,9 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     const Bivector3 L = biv_at(y, at.l);
     const Bivector3 omega = sandwich(r, apply(body.inv_inertia, sandwich(reverse(r), L)));  // §2.3.2
     const double speed = std::sqrt(scalar_product(v, v)), spin = std::sqrt(-scalar_product(omega, omega));
-    Vector3 force = body.mass * vector3(m.gravity) - m.linear_k * v - (m.quadratic_k * speed) * v;
-    Bivector3 torque = -m.linear_k_angular * omega - (m.quadratic_k_angular * spin) * omega;
-    for (const auto& push : m.pushes)
+    Vector3 force = body.mass * vector3(m.effects.gravity) - m.effects.linear_k * v - (m.effects.quadratic_k * speed) * v;
+    Bivector3 torque = -m.effects.linear_k_angular * omega - (m.effects.quadratic_k_angular * spin) * omega;
+    for (const auto& push : m.effects.pushes)
       if (push.body == b && t >= push.from && t < push.until) {
         const Vector3 f = vector3(push.force);
         force += f;

@@ -38,10 +38,7 @@ struct RigidBodies {
     std::vector<std::string> names;
     std::vector<Body> bodies;
     std::vector<double> y0;        // the initial state, packed
-    struct Push { std::size_t body; Eigen::Vector3d point, force; double from, until; };
-    std::vector<Push> pushes;      // the applied_forces effect: body point (body frame), world force
-    Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
-    double linear_k = 0, linear_k_angular = 0, quadratic_k = 0, quadratic_k_angular = 0;
+    core::BodyEffects effects;
     static constexpr std::size_t stride = 13;  // doubles per body
   };
 

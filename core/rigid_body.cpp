@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 
+#include <algorithm>
 #include <variant>
 
 namespace gacompare::core {
@@ -27,6 +28,21 @@ UnitDensity unit_density(const Shape& shape, const std::string& body) {
                     "only boxes can be simulated for now");
 }
 }  // namespace
+
+BodyEffects body_effects(const Scene& scene) {
+  BodyEffects fx;
+  for (const auto& e : scene.effects) {
+    if (auto* g = std::get_if<Gravity>(&e)) fx.gravity = g->g;
+    if (auto* d = std::get_if<LinearDrag>(&e)) fx.linear_k = d->k, fx.linear_k_angular = d->k_angular;
+    if (auto* d = std::get_if<QuadraticDrag>(&e)) fx.quadratic_k = d->k, fx.quadratic_k_angular = d->k_angular;
+    if (auto* a = std::get_if<AppliedForces>(&e))
+      for (const auto& f : a->forces) {
+        const auto it = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const Body& b) { return b.name == f.body; });
+        fx.pushes.push_back({static_cast<std::size_t>(it - scene.bodies.begin()), f.point, f.force, f.from, f.until});
+      }
+  }
+  return fx;
+}
 
 std::vector<BodyProperties> body_properties(const Scene& scene) {
   std::vector<BodyProperties> out;

@@ -16,6 +16,20 @@ struct BodyProperties {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();
 };
 
+// The effects a scene lists, as they act on bodies (read once; every backend
+// applies them in its own algebra): gravity, drag on v and ω, forces at points.
+struct BodyEffects {
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
+  double linear_k = 0, linear_k_angular = 0, quadratic_k = 0, quadratic_k_angular = 0;
+  struct Push {
+    std::size_t body;                // scene index
+    Eigen::Vector3d point, force;    // body frame from the centre of mass; world
+    double from, until;              // active for from <= t < until
+  };
+  std::vector<Push> pushes;
+};
+BodyEffects body_effects(const Scene& scene);
+
 // One per scene body, in scene order, from its shape and its mass or density
 // (uniform density): exact polyhedral mass properties (core/mass_properties.hpp).
 std::vector<BodyProperties> body_properties(const Scene& scene);

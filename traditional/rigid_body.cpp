@@ -53,16 +53,7 @@ RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vecto
   m.rotation = scene.rigid_body.rotation;
   m.renormalise = scene.rigid_body.renormalise;
   m.stride = m.rotation == core::Rotation::matrix ? 18 : 13;
-  for (const auto& e : scene.effects) {
-    if (auto* g = std::get_if<core::Gravity>(&e)) m.gravity = g->g;
-    if (auto* d = std::get_if<core::LinearDrag>(&e)) m.linear_k = d->k, m.linear_k_angular = d->k_angular;
-    if (auto* d = std::get_if<core::QuadraticDrag>(&e)) m.quadratic_k = d->k, m.quadratic_k_angular = d->k_angular;
-    if (auto* a = std::get_if<core::AppliedForces>(&e))
-      for (const auto& f : a->forces) {
-        const auto it = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const auto& bd) { return bd.name == f.body; });
-        m.pushes.push_back({static_cast<std::size_t>(it - scene.bodies.begin()), f.point, f.force, f.from, f.until});
-      }
-  }
+  m.effects = core::body_effects(scene);
   m.y0.assign(m.stride * scene.bodies.size(), 0.0);
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const auto& body = scene.bodies[b];
@@ -102,9 +93,9 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     const Vec v = body.inv_mass * P;
     const Mat r = rotation(m, y, at);
     const Vec w = r * (body.inv_inertia * (r.transpose() * L));  // ω = R I⁻¹ Rᵀ L
-    Vec force = body.mass * m.gravity - m.linear_k * v - m.quadratic_k * v.norm() * v;
-    Vec torque = -m.linear_k_angular * w - m.quadratic_k_angular * w.norm() * w;
-    for (const auto& push : m.pushes)
+    Vec force = body.mass * m.effects.gravity - m.effects.linear_k * v - m.effects.quadratic_k * v.norm() * v;
+    Vec torque = -m.effects.linear_k_angular * w - m.effects.quadratic_k_angular * w.norm() * w;
+    for (const auto& push : m.effects.pushes)
       if (push.body == b && t >= push.from && t < push.until) {
         force += push.force;
         torque += (r * push.point).cross(push.force);  // τ = (R p) × F
