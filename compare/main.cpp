@@ -1,6 +1,7 @@
 // gacompare: runs physics scenes through the traditional and geometric-algebra
 // backends and writes comparison reports. Results go to files, logs to stderr.
 // Exit codes: 0 success, 1 a run or check failed, 2 bad usage or bad input.
+#include "compare/check.hpp"
 #include "compare/machine.hpp"
 #include "compare/report.hpp"
 #include "compare/runner.hpp"
@@ -11,7 +12,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <optional>
 #include <set>
 
 #ifndef GACOMPARE_DATA_DIR
@@ -59,6 +62,52 @@ int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std
   return failed ? 1 : 0;
 }
 
+// Reads a stored baseline; nullopt when there is none. A file that is there but
+// cannot be read or parsed is an input error naming it.
+std::optional<nlohmann::json> read_baseline(const fs::path& file) {
+  std::error_code ec;
+  if (!fs::exists(file, ec)) return std::nullopt;
+  std::ifstream in(file);
+  if (!in) throw input_error(file.string() + ": cannot read this baseline");
+  try {
+    auto j = nlohmann::json::parse(in);
+    if (!j.is_object() || !j.contains("runs") || !j.at("runs").is_array())
+      throw input_error(file.string() + ": not a gacompare baseline (expected an object with \"runs\")");
+    return j;
+  } catch (const nlohmann::json::exception& e) {
+    throw input_error(file.string() + ": cannot parse this baseline: " + e.what());
+  }
+}
+
+int check_scenes(const std::vector<core::Scene>& scenes, const fs::path& baseline_dir, bool update, int repeats,
+                 bool quiet) {
+  std::error_code ec;
+  if (!update && !fs::is_directory(baseline_dir, ec))
+    throw input_error(baseline_dir.string() + ": no such baseline folder (create it with --update)");
+  std::vector<compare::CheckLine> lines;
+  for (const auto& scene : scenes) {
+    const fs::path file = compare::baseline_path(baseline_dir, scene.name);
+    const auto baseline = read_baseline(file);
+    if (!baseline && !update)
+      throw input_error(file.string() + ": no baseline for scene '" + scene.name + "' (store one with --update)");
+    if (!quiet) std::cerr << "gacompare: check " << scene.name << "\n";
+    const auto result = compare::compare_scene(scene, compare::backend_names(), repeats);
+    auto scene_lines = compare::check_scene(result, update ? std::nullopt : baseline);
+    lines.insert(lines.end(), scene_lines.begin(), scene_lines.end());
+    if (update) {
+      compare::write_file_atomically(file, compare::baseline_json(result).dump(1) + "\n");
+      lines.push_back({scene.name, "all", "baseline", 0, 0, compare::CheckLine::Verdict::info, "stored " + file.string()});
+    }
+  }
+  std::cout << compare::check_table(lines);
+  auto count = [&](compare::CheckLine::Verdict v) {
+    return std::count_if(lines.begin(), lines.end(), [&](const auto& l) { return l.verdict == v; });
+  };
+  const auto failed = count(compare::CheckLine::Verdict::fail);
+  std::cout << "\ncheck: " << count(compare::CheckLine::Verdict::pass) << " passed, " << failed << " failed\n";
+  return failed ? 1 : 0;
+}
+
 int list_scenes(const fs::path& dir) {
   if (!fs::is_directory(dir)) throw input_error(dir.string() + ": not a folder of scenes");
   std::vector<fs::path> files;
@@ -99,6 +148,16 @@ int main(int argc, char** argv) {
   cmp->add_option("--repeat", cmp_repeat, "repeats per backend, interleaved")->check(CLI::PositiveNumber);
   cmp->add_option("--backends", cmp_backends, "backends to run")->check(CLI::IsMember(compare::backend_names()));
 
+  std::vector<std::string> chk_scenes;
+  std::string chk_baseline;
+  bool chk_update = false;
+  int chk_repeat = 1;
+  auto* chk = app.add_subcommand("check", "regression checks: backends against each other and against stored baselines");
+  chk->add_option("scenes", chk_scenes, "scene files (JSON)")->required();
+  chk->add_option("--baseline", chk_baseline, "folder of baselines, one SCENE.json per scene")->required();
+  chk->add_flag("--update", chk_update, "store fresh baselines instead of comparing with them");
+  chk->add_option("--repeat", chk_repeat, "repeats per backend, for the timing ratio")->check(CLI::PositiveNumber);
+
   std::string list_dir = std::string(GACOMPARE_DATA_DIR) + "/scenes";
   auto* list = app.add_subcommand("list", "list the bundled scenes");
   list->add_option("--scenes", list_dir, "folder of scene files");
@@ -115,6 +174,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) return run_and_report(load_all({run_scene}), {run_backend}, run_repeat, run_out, quiet);
     if (*cmp) return run_and_report(load_all(cmp_scenes), cmp_backends, cmp_repeat, cmp_out, quiet);
+    if (*chk) return check_scenes(load_all(chk_scenes), chk_baseline, chk_update, chk_repeat, quiet);
     if (*list) return list_scenes(list_dir);
   } catch (const gacompare::Error& e) {
     std::cerr << "gacompare: " << e.what() << "\n";

@@ -361,9 +361,10 @@ class Loader {
   explicit Loader(const Ctx& ctx) : ctx_(ctx) {}
 
   Scene scene(const json& root) {
-    static constexpr Keys<12> keys = {"name",      "description", "duration",          "output",
+    static constexpr Keys<13> keys = {"name",      "description", "duration",          "output",
                                       "solver",    "effects",     "particles",         "constraints",
-                                      "bodies",    "generators",  "constraint_solver", "rigid_body"};
+                                      "bodies",    "generators",  "constraint_solver", "rigid_body",
+                                      "check"};
     Obj o({ctx_, &root, ""}, keys);
     Scene s;
     s.name = str(o.req("name"));
@@ -377,6 +378,7 @@ class Loader {
     s.solver = solver(o.req("solver"));
     if (auto c = o.opt("constraint_solver")) s.constraint_solver = constraint_solver(*c);
     if (auto c = o.opt("rigid_body")) s.rigid_body = rigid_body(*c);
+    if (auto c = o.opt("check")) s.check = check(*c);
     each(o.opt("particles"), [&](const Val& v) { s.particles.push_back(particle(v)); });
     each(o.opt("bodies"), [&](const Val& v) { s.bodies.push_back(body(v)); });
     each(o.opt("generators"), [&](const Val& v) { s.generators.push_back(generator(v)); });
@@ -411,6 +413,19 @@ class Loader {
     if (auto x = o.opt("projection_tolerance")) c.projection_tolerance = number(*x, Range::positive);
     if (auto x = o.opt("cg_tolerance")) c.cg_tolerance = number(*x, Range::positive);
     if (auto x = o.opt("cg_max_iterations")) c.cg_max_iterations = integer(*x, 1, 1000000);
+    return c;
+  }
+
+  CheckSpec check(const Val& v) {
+    static constexpr Keys<5> keys = {"max_divergence", "baseline_tolerance", "max_energy_drift",
+                                     "max_constraint_violation", "max_rotation_drift"};
+    Obj o(v, keys);
+    CheckSpec c;
+    if (auto x = o.opt("max_divergence")) c.max_divergence = number(*x, Range::non_negative);
+    if (auto x = o.opt("baseline_tolerance")) c.baseline_tolerance = number(*x, Range::non_negative);
+    if (auto x = o.opt("max_energy_drift")) c.max_energy_drift = number(*x, Range::non_negative);
+    if (auto x = o.opt("max_constraint_violation")) c.max_constraint_violation = number(*x, Range::non_negative);
+    if (auto x = o.opt("max_rotation_drift")) c.max_rotation_drift = number(*x, Range::non_negative);
     return c;
   }
 

@@ -135,6 +135,17 @@ struct RigidBodySpec {
   Renormalise renormalise = Renormalise::none;
 };
 
+// What `gacompare check` holds a scene to (scene key "check"). The two
+// comparisons every check makes have documented defaults; the invariant bounds
+// are checked only where the scene states them.
+struct CheckSpec {
+  double max_divergence = 1e-6;          // m: largest distance between the backends' positions
+  double baseline_tolerance = 1e-9;      // m: largest distance from the stored baseline's final positions
+  std::optional<double> max_energy_drift;          // relative, as reports measure it
+  std::optional<double> max_constraint_violation;  // m
+  std::optional<double> max_rotation_drift;        // ‖RᵀR − I‖, |qq* − 1|, |RR̃ − 1|
+};
+
 struct Scene {
   std::string name;
   std::string description;
@@ -145,6 +156,7 @@ struct Scene {
   SolverSpec solver;
   ConstraintSolverSpec constraint_solver;
   RigidBodySpec rigid_body;
+  CheckSpec check;
   std::vector<Effect> effects;  // ONLY these are simulated
   std::vector<Particle> particles;
   std::vector<Constraint> constraints;

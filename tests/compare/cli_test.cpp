@@ -156,6 +156,47 @@ TEST(Cli, FailedRunExitsOneAndKeepsItsResults) {
   EXPECT_EQ(j["runs"][0]["samples"].size(), 1u);
 }
 
+TEST(Cli, CheckPassesOnAFreshBaselineAndFailsOnADoctoredOne) {
+  const fs::path dir = fresh_dir("check");
+  const Result update = gacompare("check " + kScene + " --baseline " + dir.string() + " --update --quiet");
+  ASSERT_EQ(update.code, 0) << update.err << update.out;
+  const fs::path file = dir / "projectile_linear_drag.json";
+  ASSERT_TRUE(fs::exists(file));
+  const Result fresh = gacompare("check " + kScene + " --baseline " + dir.string() + " --quiet");
+  EXPECT_EQ(fresh.code, 0) << fresh.out;
+  EXPECT_NE(fresh.out.find(" passed, 0 failed"), std::string::npos) << fresh.out;
+  EXPECT_NE(fresh.out.find("time / baseline time"), std::string::npos) << fresh.out;  // reported, not checked
+
+  // Move one particle's stored final position by 1 µm: beyond the 1e-9 m tolerance.
+  json j = read_json(file);
+  j["runs"][1]["final"]["particles"]["shot"][0] = j["runs"][1]["final"]["particles"]["shot"][0].get<double>() + 1e-6;
+  write_text(file, j.dump());
+  const Result doctored = gacompare("check " + kScene + " --baseline " + dir.string() + " --quiet");
+  EXPECT_EQ(doctored.code, 1) << doctored.out;
+  EXPECT_NE(doctored.out.find("| cga | distance from baseline, final state (m) | 1e-06 | 1e-09 | **FAIL**"),
+            std::string::npos)
+      << doctored.out;
+
+  // A doctored scene hash says the scene changed, not that physics did.
+  j = read_json(file);
+  j["sha256"] = "0";
+  write_text(file, j.dump());
+  const Result changed = gacompare("check " + kScene + " --baseline " + dir.string() + " --quiet");
+  EXPECT_EQ(changed.code, 1);
+  EXPECT_NE(changed.out.find("scene file changed"), std::string::npos) << changed.out;
+}
+
+TEST(Cli, CheckWithoutOrWithABrokenBaselineExitsTwo) {
+  const fs::path dir = fresh_dir("check_missing");
+  const Result none = gacompare("check " + kScene + " --baseline " + dir.string());
+  EXPECT_EQ(none.code, 2);
+  EXPECT_NE(none.err.find("--update"), std::string::npos) << none.err;
+  write_text(dir / "projectile_linear_drag.json", "{ not json");
+  const Result broken = gacompare("check " + kScene + " --baseline " + dir.string());
+  EXPECT_EQ(broken.code, 2);
+  EXPECT_NE(broken.err.find("projectile_linear_drag.json: cannot parse this baseline"), std::string::npos) << broken.err;
+}
+
 TEST(Cli, VersionHelpAndList) {
   const Result v = gacompare("--version");
   EXPECT_EQ(v.code, 0);

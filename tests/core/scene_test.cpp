@@ -317,7 +317,7 @@ std::vector<BadCase> bad_cases() {
        set("/colour", "red"),
        {": /colour: expected one of the keys name, description, duration, output, solver, effects, "
         "particles, "
-        "constraints, bodies, generators, constraint_solver, rigid_body, got the unknown key \"colour\""}},
+        "constraints, bodies, generators, constraint_solver, rigid_body, check, got the unknown key \"colour\""}},
       {"UnknownParticleKey",
        set("/particles/0/mas", 1),
        {": /particles/0/mas: expected one of the keys name, mass, position, velocity, pinned, got the "
