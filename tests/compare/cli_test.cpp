@@ -19,9 +19,22 @@ struct Result {
   std::string out, err;
 };
 
+// This process's scratch folder, removed when the test binary exits.
+const fs::path& scratch() {
+  struct Scratch {
+    fs::path dir = fs::temp_directory_path() / ("gacompare_cli_" + std::to_string(::getpid()));
+    ~Scratch() {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+    }
+  };
+  static const Scratch s;
+  return s.dir;
+}
+
 // Runs gacompare with `args`; stdout and stderr captured separately.
 Result gacompare(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path() / ("gacompare_cli_" + std::to_string(::getpid()));
+  const fs::path dir = scratch();
   fs::create_directories(dir);
   const std::string cmd = std::string(GACOMPARE_BIN) + " " + args + " >" + (dir / "out").string() + " 2>" +
                           (dir / "err").string();
@@ -36,7 +49,7 @@ Result gacompare(const std::string& args) {
 }
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("gacompare_cli_" + std::to_string(::getpid())) / name;
+  const fs::path d = scratch() / name;
   fs::remove_all(d);
   return d;
 }
