@@ -14,6 +14,7 @@ packages=(
   libssl-dev               # SHA-256 of scene files (libcrypto)
   libboost-dev             # Boost.Odeint: the peer our solvers are checked and timed against
   python3                  # scripts/bench-ratios.py (README tables)
+  gnuplot-nox              # plots: work-precision diagrams, report figures
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,65 @@
+#include "compare/plot.hpp"
+
+#include "compare/machine.hpp"
+#include "core/error.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace gacompare::compare {
+
+namespace {
+std::string quoted(const std::string& s) {  // a gnuplot double-quoted string
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+}  // namespace
+
+void write_svg(const Plot& plot, const std::filesystem::path& file) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("gacompare_plot_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ostringstream script;
+  script << "set terminal svg size 900,600 dynamic enhanced font 'sans,12' background rgb 'white'\n"
+         << "set output " << quoted((dir / "plot.svg").string()) << "\n"
+         << "set title " << quoted(plot.title) << "\n"
+         << "set xlabel " << quoted(plot.xlabel) << "\nset ylabel " << quoted(plot.ylabel) << "\n"
+         << "set key outside right top\nset grid\n";
+  if (plot.logx) script << "set logscale x\nset format x '10^{%L}'\n";
+  if (plot.logy) script << "set logscale y\nset format y '10^{%L}'\n";
+  script << "plot ";
+  for (std::size_t i = 0; i < plot.series.size(); ++i) {
+    const Series& s = plot.series[i];
+    const fs::path data = dir / ("series" + std::to_string(i) + ".dat");
+    std::ofstream out(data);
+    for (std::size_t k = 0; k < s.x.size(); ++k) out << s.x[k] << ' ' << s.y[k] << '\n';
+    script << (i ? ", " : "") << quoted(data.string()) << " using 1:2 with linespoints title " << quoted(s.title) << " noenhanced"
+           << (s.highlight ? " lw 3 pt 7 ps 1.2" : " lw 1 pt " + std::to_string(1 + i % 12));
+  }
+  script << "\n";
+  { std::ofstream(dir / "plot.gp") << script.str(); }
+  const std::string cmd = "gnuplot " + quoted((dir / "plot.gp").string()) + " 2> " + quoted((dir / "gnuplot.err").string());
+  const int rc = std::system(cmd.c_str());
+  std::error_code ec;
+  if (rc != 0 || !fs::exists(dir / "plot.svg", ec)) {
+    std::ifstream err(dir / "gnuplot.err");
+    std::string first;
+    std::getline(err, first);
+    fs::remove_all(dir, ec);
+    throw run_error(file.string() + ": gnuplot failed" + (rc == 127 * 256 ? " (is it installed? scripts/install-deps.sh installs gnuplot-nox)" : ": " + first));
+  }
+  std::ifstream svg(dir / "plot.svg");
+  std::stringstream text;
+  text << svg.rdbuf();
+  fs::remove_all(dir, ec);
+  write_file_atomically(file, text.str());
+}
+
+}  // namespace gacompare::compare

@@ -1,0 +1,27 @@
+#pragma once
+// Plots drawn by gnuplot (Debian's gnuplot-nox), not by hand: a series per line,
+// written to a temporary folder with a gnuplot script, rendered to SVG. Used for
+// the work-precision diagrams (what accuracy costs in time) and report figures.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gacompare::compare {
+
+struct Series {
+  std::string title;
+  std::vector<double> x, y;
+  bool highlight = false;  // drawn bold (e.g. the Pareto front)
+};
+
+struct Plot {
+  std::string title, xlabel, ylabel;
+  bool logx = false, logy = false;
+  std::vector<Series> series;
+};
+
+// Renders `plot` to an SVG file (written atomically). Throws run_error naming the
+// cause when gnuplot is missing or fails: never a silent missing figure.
+void write_svg(const Plot& plot, const std::filesystem::path& file);
+
+}  // namespace gacompare::compare
