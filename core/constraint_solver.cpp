@@ -147,7 +147,9 @@ const std::vector<double>& ConstraintSolver::solve(std::span<const ConstraintRow
     char buf[160];
     std::snprintf(buf, sizeof buf, "constraints: the multiplier solve did not converge (relative residual %.3g after %ld CG iterations)",
                   cg.error(), static_cast<long>(cg.iterations()));
-    throw run_error(std::string(buf) + ": the constraints are redundant or locked, e.g. a taut chain of rods between two pinned particles");
+    throw run_error(std::string(buf) +
+                    ": the constraints are redundant or locked (e.g. a taut chain of rods between two pinned "
+                    "particles), or a step too large has carried the state far off them");
   }
   stats_.max_relative_residual = std::max(stats_.max_relative_residual, cg.error());
   lambda.assign(x.data(), x.data() + m);

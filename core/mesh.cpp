@@ -1,0 +1,369 @@
+#include "core/mesh.hpp"
+
+#include "core/error.hpp"
+
+#include <Eigen/Geometry>
+
+extern "C" {
+#include <libqhull_r/qhull_ra.h>
+}
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <utility>
+
+namespace gacompare::core {
+
+namespace {
+
+std::string fmt(const Vec3& v) {
+  std::ostringstream s;
+  s.precision(9);
+  s << '(' << v.x() << ", " << v.y() << ", " << v.z() << ')';
+  return s.str();
+}
+
+std::string fmt(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+// A triangle is degenerate when twice its area is below 1e-12 × (longest edge)²,
+// i.e. its largest angle is within ~1e-12 rad of 180° or two corners coincide:
+// its normal would then be rounding noise (relative error ~1e-16/1e-12 = 1e-4 and up).
+constexpr double kDegenerate = 1e-12;
+// Coplanar triangles share a plane (fn 21) when their normals differ by < 1e-9 and
+// their offsets by < 1e-9 × size: far above rounding (~1e-15), far below any real
+// crease a modeller would make. The report merges by direction alone, which is the
+// same for convex bodies; matching offsets as well keeps the parallel but distinct
+// faces of a non-convex body apart.
+constexpr double kCoplanar = 1e-9;
+
+// Fan-triangulates a convex polygon (vertex loop in either orientation), starting
+// at the corner whose fan has the largest smallest triangle: a plain fan from
+// corner 0 makes zero-area triangles when that corner lies on the line of another
+// side, as Qhull's merged facets and polygons with collinear vertices allow.
+void fan(const std::vector<Vec3>& v, const std::vector<int>& loop, std::vector<Triangle>& out) {
+  const int n = static_cast<int>(loop.size());
+  int best = 0;
+  double best_min = -1;
+  for (int s = 0; s < n; ++s) {
+    double m = INFINITY;
+    for (int k = 1; k + 1 < n; ++k) {
+      const Vec3& a = v[loop[s]];
+      m = std::min(m, (v[loop[(s + k) % n]] - a).cross(v[loop[(s + k + 1) % n]] - a).norm());
+    }
+    if (m > best_min) best_min = m, best = s;
+  }
+  for (int k = 1; k + 1 < n; ++k) out.push_back({loop[best], loop[(best + k) % n], loop[(best + k + 1) % n]});
+}
+
+// For the built-in convex shapes, which contain the origin: faces are listed as
+// vertex loops and turned outward here, so no orientation is hand-written.
+Mesh convex_from_faces(std::string name, std::vector<Vec3> v, const std::vector<std::vector<int>>& faces) {
+  std::vector<Triangle> tris;
+  for (const auto& f : faces) {
+    std::vector<int> loop = f;
+    const Vec3 n = (v[loop[1]] - v[loop[0]]).cross(v[loop[2]] - v[loop[0]]);
+    if (n.dot(v[loop[0]]) < 0) std::reverse(loop.begin(), loop.end());
+    fan(v, loop, tris);
+  }
+  return Mesh::from_triangles(std::move(name), std::move(v), std::move(tris));
+}
+
+}  // namespace
+
+Mesh Mesh::from_triangles(std::string name, std::vector<Vec3> vertices, std::vector<Triangle> triangles) {
+  Mesh m;
+  m.name_ = std::move(name);
+  const auto fail = [&](const std::string& what) { return input_error(m.name_ + ": " + what); };
+  if (triangles.size() < 4) throw fail("a closed mesh needs at least 4 triangles, got " + std::to_string(triangles.size()));
+  const int nv = static_cast<int>(vertices.size());
+  std::vector<char> used(vertices.size(), 0);
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int i : triangles[t]) {
+      if (i < 0 || i >= nv)
+        throw fail("triangle " + std::to_string(t) + ": vertex index " + std::to_string(i) + " out of range (" +
+                   std::to_string(nv) + " vertices)");
+      used[i] = 1;
+    }
+  for (int i = 0; i < nv; ++i) {
+    if (!vertices[i].allFinite()) throw fail("vertex " + std::to_string(i) + " is not finite");
+    if (!used[i]) throw fail("vertex " + std::to_string(i) + " belongs to no triangle");
+  }
+  Eigen::AlignedBox3d box;
+  for (const auto& p : vertices) box.extend(p);
+  m.size_ = box.diagonal().norm();
+
+  // Degenerate triangles first: their normals would poison every later check.
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto [a, b, c] = triangles[t];
+    const Vec3 e0 = vertices[b] - vertices[a], e1 = vertices[c] - vertices[b], e2 = vertices[a] - vertices[c];
+    const double longest = std::max({e0.squaredNorm(), e1.squaredNorm(), e2.squaredNorm()});
+    if (a == b || b == c || a == c || !(e0.cross(-e2).norm() > kDegenerate * longest))
+      throw fail("degenerate (zero-area) triangle " + std::to_string(t) + " (vertices " + std::to_string(a) + ", " +
+                 std::to_string(b) + ", " + std::to_string(c) + ")");
+  }
+
+  // Closed: each undirected edge in exactly two triangles. Oriented: those two use
+  // it in opposite directions. Checked in that order so the message names the cause.
+  std::map<std::pair<int, int>, std::vector<std::pair<std::size_t, bool>>> edges;  // (lo,hi) -> (triangle, lo->hi?)
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+      edges[{std::min(a, b), std::max(a, b)}].push_back({t, a < b});
+    }
+  for (const auto& [e, uses] : edges)
+    if (uses.size() != 2)
+      throw fail("not closed: edge (" + std::to_string(e.first) + ", " + std::to_string(e.second) + ") belongs to " +
+                 std::to_string(uses.size()) + " triangle(s), expected 2 (first: triangle " +
+                 std::to_string(uses[0].first) + ")");
+  for (const auto& [e, uses] : edges)
+    if (uses[0].second == uses[1].second)
+      throw fail("inconsistently oriented: triangles " + std::to_string(uses[0].first) + " and " +
+                 std::to_string(uses[1].first) + " both run edge " + std::to_string(uses[0].second ? e.first : e.second) +
+                 " -> " + std::to_string(uses[0].second ? e.second : e.first));
+
+  // Outward: the signed volume (divergence theorem, apex at the box centre to keep
+  // the triple products small) is positive for outward normals.
+  const Vec3 o = box.center();
+  double six_v = 0;
+  for (const auto& [a, b, c] : triangles)
+    six_v += (vertices[a] - o).dot((vertices[b] - o).cross(vertices[c] - o));
+  if (!(six_v > 0))
+    throw fail(std::string(six_v < 0 ? "inside out" : "encloses no volume") + ": signed volume " + fmt(six_v / 6) +
+               " (triangles must run counter-clockwise seen from outside)");
+
+  m.normals_.reserve(triangles.size());
+  for (const auto& [a, b, c] : triangles)
+    m.normals_.push_back((vertices[b] - vertices[a]).cross(vertices[c] - vertices[a]).normalized());
+  m.triangle_plane_.reserve(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const Vec3& n = m.normals_[t];
+    const double d = n.dot(vertices[triangles[t][0]]);
+    const auto it = std::find_if(m.planes_.begin(), m.planes_.end(), [&](const Plane& p) {
+      return (p.normal - n).norm() < kCoplanar && std::abs(p.offset - d) < kCoplanar * m.size_;
+    });
+    m.triangle_plane_.push_back(static_cast<int>(it - m.planes_.begin()));
+    if (it == m.planes_.end()) m.planes_.push_back({n, d});
+  }
+  m.vertices_ = std::move(vertices);
+  m.triangles_ = std::move(triangles);
+  return m;
+}
+
+Mesh Mesh::transformed(const Eigen::Matrix3d& rotation, const Vec3& translation) const {
+  std::vector<Vec3> v;
+  v.reserve(vertices_.size());
+  for (const auto& p : vertices_) v.push_back(rotation * p + translation);
+  return from_triangles(name_, std::move(v), triangles_);
+}
+
+// --- built-in shapes ------------------------------------------------------------------
+
+Mesh make_box(const Vec3& size) {
+  const Vec3 h = size / 2;
+  std::vector<Vec3> v;
+  for (int i = 0; i < 8; ++i) v.emplace_back(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z());
+  // Each face: the four corners with one coordinate bit fixed, as a loop.
+  return convex_from_faces("box " + fmt(size.x()) + " x " + fmt(size.y()) + " x " + fmt(size.z()), std::move(v),
+                           {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}});
+}
+
+Mesh make_tetrahedron(double edge) {
+  // Alternate corners of a cube of side 2: edge 2√2, centroid at the origin.
+  const double s = edge / (2 * std::numbers::sqrt2);
+  std::vector<Vec3> v{{s, s, s}, {s, -s, -s}, {-s, s, -s}, {-s, -s, s}};
+  return convex_from_faces("tetrahedron edge " + fmt(edge), std::move(v), {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}});
+}
+
+Mesh make_pyramid(double base, double height) {
+  const double b = base / 2, lo = -height / 4;
+  std::vector<Vec3> v{{-b, -b, lo}, {b, -b, lo}, {b, b, lo}, {-b, b, lo}, {0, 0, 3 * height / 4}};
+  return convex_from_faces("pyramid base " + fmt(base) + " height " + fmt(height), std::move(v),
+                           {{0, 1, 2, 3}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}});
+}
+
+Mesh make_octahedron(double radius) {
+  std::vector<Vec3> v;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double s : {radius, -radius}) v.push_back(s * Vec3::Unit(axis));
+  std::vector<std::vector<int>> faces;  // one vertex from each axis pair
+  for (int x : {0, 1})
+    for (int y : {2, 3})
+      for (int z : {4, 5}) faces.push_back({x, y, z});
+  return convex_from_faces("octahedron radius " + fmt(radius), std::move(v), faces);
+}
+
+Mesh make_icosahedron(double radius) {
+  // (0, ±1, ±φ) and its cyclic permutations: edge 2, circumradius √(1 + φ²).
+  const double phi = std::numbers::phi, s = radius / std::sqrt(1 + phi * phi);
+  std::vector<Vec3> v;
+  for (int c = 0; c < 3; ++c)
+    for (double a : {1.0, -1.0})
+      for (double b : {phi, -phi}) {
+        Vec3 p(0, a, b);
+        v.push_back(s * Vec3(p[(3 - c) % 3], p[(4 - c) % 3], p[(5 - c) % 3]));
+      }
+  // Faces are the triples of mutually adjacent vertices (distance = edge).
+  const double edge2 = 4 * s * s;
+  const auto adjacent = [&](int i, int j) { return std::abs((v[i] - v[j]).squaredNorm() - edge2) < 1e-9 * edge2; };
+  std::vector<std::vector<int>> faces;
+  for (int i = 0; i < 12; ++i)
+    for (int j = i + 1; j < 12; ++j)
+      for (int k = j + 1; k < 12; ++k)
+        if (adjacent(i, j) && adjacent(j, k) && adjacent(i, k)) faces.push_back({i, j, k});
+  return convex_from_faces("icosahedron radius " + fmt(radius), std::move(v), faces);
+}
+
+// --- convex hull (Qhull) ------------------------------------------------------------
+
+Mesh convex_hull(const std::vector<Vec3>& points, const std::string& what) {
+  const std::string name = what + " of " + std::to_string(points.size()) + " points";
+  if (points.size() < 4) throw input_error(name + ": a hull with volume needs at least 4 points");
+  std::vector<coordT> coords;
+  coords.reserve(3 * points.size());
+  for (const auto& p : points) {
+    if (!p.allFinite()) throw input_error(name + ": point " + fmt(p) + " is not finite");
+    coords.insert(coords.end(), {p.x(), p.y(), p.z()});
+  }
+  // Qhull reports errors on a FILE*: capture them to quote the first line.
+  char* err_text = nullptr;
+  std::size_t err_size = 0;
+  FILE* err = open_memstream(&err_text, &err_size);
+  qhT qh_storage;
+  qhT* qh = &qh_storage;
+  qh_zero(qh, err);
+  // Default options: Qhull merges coplanar facets (a box's faces come back as
+  // quadrilaterals, its interior points drop out); we triangulate them ourselves.
+  char options[] = "qhull";
+  const int code = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(), False, options, nullptr, err);
+  std::vector<Vec3> verts;
+  std::vector<Triangle> tris;
+  if (code == 0) {
+    std::map<int, int> index;  // Qhull point id -> our vertex
+    const auto id = [&](vertexT* vx) {
+      const int pid = qh_pointid(qh, vx->point);
+      auto [it, fresh] = index.try_emplace(pid, static_cast<int>(verts.size()));
+      if (fresh) verts.push_back(points[pid]);
+      return it->second;
+    };
+    facetT* facet;
+    vertexT *vertex, **vertexp;
+    FORALLfacets {
+      setT* ordered = qh_facet3vertex(qh, facet);  // the facet's corners in cyclic order
+      std::vector<int> loop;
+      FOREACHvertex_(ordered) loop.push_back(id(vertex));
+      qh_settempfree(qh, &ordered);
+      const Vec3 n(facet->normal[0], facet->normal[1], facet->normal[2]);  // Qhull's outward normal
+      std::vector<Triangle> part;
+      fan(verts, loop, part);
+      for (auto& t : part) {
+        if ((verts[t[1]] - verts[t[0]]).cross(verts[t[2]] - verts[t[0]]).dot(n) < 0) std::swap(t[1], t[2]);
+        tris.push_back(t);
+      }
+    }
+  }
+  qh_freeqhull(qh, !qh_ALL);
+  int curlong = 0, totlong = 0;
+  qh_memfreeshort(qh, &curlong, &totlong);
+  std::fclose(err);
+  std::string message(err_text ? err_text : "");
+  std::free(err_text);
+  if (code != 0) {
+    // Qhull's first line says why (e.g. "QH6154 ... initial simplex is flat").
+    const auto first = message.find_first_not_of(" \n");
+    message = first == std::string::npos ? "" : message.substr(first, message.find('\n', first) - first);
+    throw input_error(name + ": Qhull found no 3-d hull (error " + std::to_string(code) + ": " + message + ")");
+  }
+  return Mesh::from_triangles(name, std::move(verts), std::move(tris));
+}
+
+// --- OBJ (tinyobjloader) ----------------------------------------------------------
+
+Mesh load_obj(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(name, config)) {
+    std::string why = reader.Error();
+    while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
+    std::replace(why.begin(), why.end(), '\n', ';');
+    throw input_error(name + ": not a readable OBJ file: " + (why.empty() ? "unknown error" : why));
+  }
+  const auto& xyz = reader.GetAttrib().vertices;
+  std::vector<int> renumber(xyz.size() / 3, -1);
+  std::vector<Vec3> verts;
+  std::vector<Triangle> tris;
+  for (const auto& shape : reader.GetShapes()) {
+    const auto& idx = shape.mesh.indices;
+    for (std::size_t f = 0, k = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      const int nfv = shape.mesh.num_face_vertices[f];
+      if (nfv != 3) throw input_error(name + ": face " + std::to_string(f) + " of '" + shape.name + "' has " +
+                                      std::to_string(nfv) + " vertices after triangulation");
+      Triangle t{};
+      for (int j = 0; j < 3; ++j, ++k) {
+        const int vi = idx[k].vertex_index;
+        if (vi < 0 || static_cast<std::size_t>(vi) >= renumber.size())
+          throw input_error(name + ": face " + std::to_string(f) + " refers to vertex " + std::to_string(vi + 1) +
+                            ", which does not exist");
+        if (renumber[vi] < 0) {
+          renumber[vi] = static_cast<int>(verts.size());
+          verts.emplace_back(xyz[3 * vi], xyz[3 * vi + 1], xyz[3 * vi + 2]);
+        }
+        t[j] = renumber[vi];
+      }
+      tris.push_back(t);
+    }
+  }
+  return Mesh::from_triangles(name, std::move(verts), std::move(tris));
+}
+
+Mesh mesh_for(const Shape& shape) {
+  struct Build {
+    Mesh operator()(const BoxShape& s) const { return make_box(s.size); }
+    Mesh operator()(const TetrahedronShape& s) const { return make_tetrahedron(s.edge); }
+    Mesh operator()(const PyramidShape& s) const { return make_pyramid(s.base, s.height); }
+    Mesh operator()(const OctahedronShape& s) const { return make_octahedron(s.radius); }
+    Mesh operator()(const IcosahedronShape& s) const { return make_icosahedron(s.radius); }
+    Mesh operator()(const HullShape& s) const { return convex_hull(s.points); }
+    Mesh operator()(const MeshShape& s) const { return load_obj(s.file); }
+  };
+  return std::visit(Build{}, shape);
+}
+
+// --- convexity ------------------------------------------------------------------------
+
+Convexity convexity(const Mesh& mesh) {
+  const double tol = kCoplanar * mesh.size();
+  for (std::size_t p = 0; p < mesh.planes().size(); ++p) {
+    const Plane& plane = mesh.planes()[p];
+    for (std::size_t i = 0; i < mesh.vertices().size(); ++i) {
+      const double d = plane.distance(mesh.vertices()[i]);
+      if (d > tol) {
+        const auto t = std::find(mesh.triangle_plane().begin(), mesh.triangle_plane().end(), static_cast<int>(p)) -
+                       mesh.triangle_plane().begin();
+        return {false, mesh.name() + ": not convex: vertex " + std::to_string(i) + " " + fmt(mesh.vertices()[i]) +
+                           " lies " + fmt(d) + " outside the plane of triangle " + std::to_string(t) + " (normal " +
+                           fmt(plane.normal) + ")"};
+      }
+    }
+  }
+  return {};
+}
+
+void require_convex(const Mesh& mesh) {
+  if (auto c = convexity(mesh); !c.convex) throw input_error(c.reason);
+}
+
+}  // namespace gacompare::core

@@ -1,0 +1,96 @@
+#pragma once
+// Closed triangle meshes for rigid bodies (issue #5, §2.3.3 of the report): the
+// built-in shapes of the scene format, convex hulls (Qhull) and OBJ files
+// (tinyobjloader), with per-triangle outward normals and the distinct face planes.
+//
+// A Mesh is always valid: every constructor checks that it is closed (each edge
+// in exactly two triangles), consistently oriented (each edge once in each
+// direction), outward (positive signed volume) and free of zero-area triangles,
+// and throws gacompare::input_error with one line naming the mesh, what failed
+// and where. Convexity is checked separately (convexity()): non-convex meshes are
+// fine for point-in-body by parity and for mass properties, not for the convex
+// narrowphase, which calls require_convex().
+#include "core/scene.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gacompare::core {
+
+using Triangle = std::array<int, 3>;  // vertex indices, counter-clockwise seen from outside
+
+// n·x = offset, n unit and outward.
+struct Plane {
+  Vec3 normal;
+  double offset;
+  double distance(const Vec3& p) const { return normal.dot(p) - offset; }  // > 0 outside
+};
+
+class Mesh {
+ public:
+  // Validates (see above) and computes normals and planes. `name` is used in
+  // every message about this mesh (a file path, or e.g. "box 1 x 2 x 3").
+  static Mesh from_triangles(std::string name, std::vector<Vec3> vertices, std::vector<Triangle> triangles);
+
+  const std::string& name() const { return name_; }
+  const std::vector<Vec3>& vertices() const { return vertices_; }
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+  const std::vector<Vec3>& normals() const { return normals_; }  // per triangle, unit, outward
+  // Distinct face planes: coplanar triangles of one polygonal face share one
+  // plane (§2.3.3 fn 21), so a box has 6, not 12.
+  const std::vector<Plane>& planes() const { return planes_; }
+  const std::vector<int>& triangle_plane() const { return triangle_plane_; }  // plane index per triangle
+  double size() const { return size_; }  // bounding-box diagonal: the length scale of tolerances
+
+  // The same solid moved rigidly: x -> R x + t (R a rotation).
+  Mesh transformed(const Eigen::Matrix3d& rotation, const Vec3& translation) const;
+
+ private:
+  std::string name_;
+  std::vector<Vec3> vertices_;
+  std::vector<Triangle> triangles_;
+  std::vector<Vec3> normals_;
+  std::vector<Plane> planes_;
+  std::vector<int> triangle_plane_;
+  double size_ = 0;
+};
+
+// --- the built-in shapes of the scene format (core/scene.hpp) --------------------
+// Each is centred on its centre of mass (the scene's body position), so the
+// mass properties come out with a zero centre of mass.
+Mesh make_box(const Vec3& size);         // full side lengths along x, y, z
+Mesh make_tetrahedron(double edge);      // regular, centroid at the origin
+// Square base of side `base` in the plane z = -height/4, apex at (0, 0, 3 height/4):
+// the centre of mass of a solid pyramid lies a quarter of the height above its base.
+Mesh make_pyramid(double base, double height);
+Mesh make_octahedron(double radius);     // vertices at ±radius on the axes
+Mesh make_icosahedron(double radius);    // centre-to-vertex radius
+
+// The convex hull of a point set, by Qhull (reentrant libqhull_r). Points inside
+// or on the hull are not vertices. Throws input_error naming `what` when the
+// points span no volume (fewer than 4, coplanar, ...). Not recentred.
+Mesh convex_hull(const std::vector<Vec3>& points, const std::string& what = "hull");
+
+// A Wavefront OBJ file, by tinyobjloader (polygons triangulated; all groups
+// form one mesh; vertices used by no face dropped). Not recentred.
+Mesh load_obj(const std::filesystem::path& file);
+
+// Any scene shape. Hull and mesh shapes keep their own coordinates: the caller
+// moves them so that the centre of mass (core/mass_properties.hpp) is the origin.
+Mesh mesh_for(const Shape& shape);
+
+// Convexity: every vertex on or behind every face plane, within
+// tolerance = 1e-9 × size() (rounding of the plane offsets is ~1e-16 × size;
+// coplanar faces from OBJ files written with 6–9 digits stay well inside it).
+struct Convexity {
+  bool convex = true;
+  std::string reason;  // one line naming the mesh, the vertex and the plane; empty when convex
+};
+Convexity convexity(const Mesh& mesh);
+void require_convex(const Mesh& mesh);  // throws input_error with convexity().reason
+
+}  // namespace gacompare::core
