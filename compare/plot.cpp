@@ -22,7 +22,9 @@ std::string quoted(const std::string& s) {  // a gnuplot double-quoted string
 }
 }  // namespace
 
-void write_svg(const Plot& plot, const std::filesystem::path& file) {
+void write_svg(const Plot& plot, const std::filesystem::path& file) { write_file_atomically(file, render_svg(plot)); }
+
+std::string render_svg(const Plot& plot) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("gacompare_plot_" + std::to_string(::getpid()));
   fs::create_directories(dir);
@@ -40,8 +42,11 @@ void write_svg(const Plot& plot, const std::filesystem::path& file) {
     const fs::path data = dir / ("series" + std::to_string(i) + ".dat");
     std::ofstream out(data);
     for (std::size_t k = 0; k < s.x.size(); ++k) out << s.x[k] << ' ' << s.y[k] << '\n';
-    script << (i ? ", " : "") << quoted(data.string()) << " using 1:2 with linespoints title " << quoted(s.title) << " noenhanced"
-           << (s.highlight ? " lw 3 pt 7 ps 1.2" : " lw 1 pt " + std::to_string(1 + i % 12));
+    // Markers only where points are few enough to read; a time series is a line.
+    const bool markers = s.x.size() <= 60;
+    script << (i ? ", " : "") << quoted(data.string()) << " using 1:2 with " << (markers ? "linespoints" : "lines")
+           << " title " << quoted(s.title) << " noenhanced"
+           << (s.highlight ? " lw 3 pt 7 ps 1.2" : markers ? " lw 1 pt " + std::to_string(1 + i % 12) : " lw 2");
   }
   script << "\n";
   { std::ofstream(dir / "plot.gp") << script.str(); }
@@ -53,13 +58,14 @@ void write_svg(const Plot& plot, const std::filesystem::path& file) {
     std::string first;
     std::getline(err, first);
     fs::remove_all(dir, ec);
-    throw run_error(file.string() + ": gnuplot failed" + (rc == 127 * 256 ? " (is it installed? scripts/install-deps.sh installs gnuplot-nox)" : ": " + first));
+    throw run_error("plot '" + plot.title + "': gnuplot failed" +
+                    (rc == 127 * 256 ? " (is it installed? scripts/install-deps.sh installs gnuplot-nox)" : ": " + first));
   }
   std::ifstream svg(dir / "plot.svg");
   std::stringstream text;
   text << svg.rdbuf();
   fs::remove_all(dir, ec);
-  write_file_atomically(file, text.str());
+  return text.str();
 }
 
 }  // namespace gacompare::compare

@@ -20,8 +20,10 @@ struct Plot {
   std::vector<Series> series;
 };
 
-// Renders `plot` to an SVG file (written atomically). Throws run_error naming the
-// cause when gnuplot is missing or fails: never a silent missing figure.
+// Renders `plot` as SVG text. Throws run_error naming the cause when gnuplot is
+// missing or fails: never a silent missing figure.
+std::string render_svg(const Plot& plot);
+// The same, written to a file atomically.
 void write_svg(const Plot& plot, const std::filesystem::path& file);
 
 }  // namespace gacompare::compare

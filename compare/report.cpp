@@ -213,6 +213,7 @@ void write_reports(const std::filesystem::path& dir, const std::vector<SceneResu
     write_file_atomically(d / "results.json", results_json(r, machine, repeats).dump(1) + "\n");
     write_file_atomically(d / "stages.csv", stage_csv({r}));
     write_file_atomically(d / "report.md", scene_report_md(r, machine, repeats));
+    write_file_atomically(d / "report.html", scene_report_html(r, machine, repeats));
   };
   if (results.size() == 1) {
     write_scene(dir, results.front());
@@ -221,6 +222,7 @@ void write_reports(const std::filesystem::path& dir, const std::vector<SceneResu
   for (const auto& r : results) write_scene(dir / r.scene.name, r);
   write_file_atomically(dir / "stages.csv", stage_csv(results));
   write_file_atomically(dir / "report.md", summary_report_md(results, machine, repeats));
+  write_file_atomically(dir / "report.html", summary_report_html(results, machine, repeats));
 }
 
 }  // namespace gacompare::compare

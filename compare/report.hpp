@@ -18,7 +18,13 @@ std::string stage_csv(const std::vector<SceneResult>& results);
 // One line per scene: total time per backend, cga/traditional ratio, divergence.
 std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats);
 
-// Writes results.json, report.md and stages.csv for one scene into `dir`, or, for
+// report.html: the same tables (converted from the markdown, so they never
+// disagree) and inline SVG figures drawn by gnuplot — energy change, constraint
+// violation, rotation drift and the divergence between backends over time.
+std::string scene_report_html(const SceneResult& r, const MachineInfo& machine, int repeats);
+std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats);
+
+// Writes results.json, report.md, report.html and stages.csv for one scene into `dir`, or, for
 // several, one such folder per scene under `dir` plus dir/report.md and
 // dir/stages.csv summarising them. Every file is written atomically.
 void write_reports(const std::filesystem::path& dir, const std::vector<SceneResult>& results,

@@ -12,9 +12,11 @@ packages=(
   nlohmann-json3-dev       # scene files, results.json
   libcli11-dev             # command line
   libssl-dev               # SHA-256 of scene files (libcrypto)
+  libqhull-dev libtinyobjloader-dev  # convex hulls (Qhull, reentrant C API), OBJ meshes
   libboost-dev             # Boost.Odeint: the peer our solvers are checked and timed against
   python3                  # scripts/bench-ratios.py (README tables)
   gnuplot-nox              # plots: work-precision diagrams, report figures
+  chromium                 # the harness test renders report.html headless
 )
 missing=()
 for p in "${packages[@]}"; do

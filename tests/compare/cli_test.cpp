@@ -112,6 +112,9 @@ TEST(Cli, CompareWritesResultsAndReportForBothBackends) {
   EXPECT_NE(md.find("| `forces` |"), std::string::npos) << md;
   EXPECT_NE(md.find("cga / traditional"), std::string::npos) << md;
   EXPECT_TRUE(fs::exists(out / "stages.csv"));
+  const std::string html = read_text(out / "report.html");  // rendered by report_render_test
+  EXPECT_NE(html.find("<table>"), std::string::npos);
+  EXPECT_NE(html.find("<svg"), std::string::npos);
   for (const auto& e : fs::directory_iterator(out))  // no temporary files left behind
     EXPECT_NE(e.path().filename().string().front(), '.') << e.path();
 }

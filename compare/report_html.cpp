@@ -1,0 +1,216 @@
+// report.html: one self-contained page per report folder — the tables of
+// report.md (converted from it, so the two never disagree) and inline SVG figures
+// drawn by gnuplot: invariants and divergence between backends over time.
+#include "compare/plot.hpp"
+#include "compare/report.hpp"
+#include "compare/results.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace gacompare::compare {
+
+namespace {
+
+std::string escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+// The inline markdown report.md uses: `code`, **bold**, [text](link).
+std::string inline_md(const std::string& text) {
+  const std::string s = escape(text);
+  std::string out;
+  for (std::size_t i = 0; i < s.size();) {
+    if (s[i] == '`') {
+      const auto end = s.find('`', i + 1);
+      if (end != std::string::npos) {
+        out += "<code>" + s.substr(i + 1, end - i - 1) + "</code>";
+        i = end + 1;
+        continue;
+      }
+    }
+    if (s.compare(i, 2, "**") == 0) {
+      const auto end = s.find("**", i + 2);
+      if (end != std::string::npos) {
+        out += "<strong>" + s.substr(i + 2, end - i - 2) + "</strong>";
+        i = end + 2;
+        continue;
+      }
+    }
+    if (s[i] == '[') {
+      const auto close = s.find("](", i);
+      const auto end = close == std::string::npos ? close : s.find(')', close);
+      if (end != std::string::npos) {
+        std::string href = s.substr(close + 2, end - close - 2);
+        if (href.size() > 3 && href.compare(href.size() - 3, 3, ".md") == 0) href.replace(href.size() - 3, 3, ".html");
+        out += "<a href=\"" + href + "\">" + s.substr(i + 1, close - i - 1) + "</a>";
+        i = end + 1;
+        continue;
+      }
+    }
+    out += s[i++];
+  }
+  return out;
+}
+
+std::vector<std::string> cells(const std::string& row) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (std::size_t i = 1; i < row.size(); ++i) {
+    if (row[i] == '|') {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += row[i];
+    }
+  }
+  for (auto& c : out) {
+    c.erase(0, c.find_first_not_of(' '));
+    c.erase(c.find_last_not_of(' ') + 1);
+  }
+  return out;
+}
+
+// Headings, paragraphs and pipe tables: the markdown report.md is made of.
+std::string markdown_to_html(const std::string& md) {
+  std::istringstream in(md);
+  std::ostringstream o;
+  std::string line;
+  bool in_table = false, header = false;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] == '|') {
+      if (!in_table) {
+        o << "<table>\n";
+        in_table = header = true;
+      }
+      if (line.find("---") != std::string::npos && line.find_first_not_of("|-: ") == std::string::npos) continue;
+      o << "<tr>";
+      for (const auto& c : cells(line)) o << (header ? "<th>" : "<td>") << inline_md(c) << (header ? "</th>" : "</td>");
+      o << "</tr>\n";
+      header = false;
+      continue;
+    }
+    if (in_table) {
+      o << "</table>\n";
+      in_table = false;
+    }
+    if (line.rfind("## ", 0) == 0) o << "<h2>" << inline_md(line.substr(3)) << "</h2>\n";
+    else if (line.rfind("# ", 0) == 0) o << "<h1>" << inline_md(line.substr(2)) << "</h1>\n";
+    else if (!line.empty()) o << "<p>" << inline_md(line) << "</p>\n";
+  }
+  if (in_table) o << "</table>\n";
+  return o.str();
+}
+
+// Log axes cannot show 0: values below the floor are drawn at it (said in the axis label).
+constexpr double kFloor = 1e-17;
+
+Plot over_time(const SceneResult& r, const std::string& title, const std::string& ylabel,
+               double (*value)(const core::Sample& first, const core::Sample& s)) {
+  Plot p{r.scene.name + ": " + title, "t (s)", ylabel + " (values below 1e-17 drawn at 1e-17)", false, true, {}};
+  for (const auto& b : r.backends) {
+    Series s{b.run.backend, {}, {}, false};
+    for (const auto& smp : b.run.samples) {
+      s.x.push_back(smp.t);
+      s.y.push_back(std::max(kFloor, value(b.run.samples.front(), smp)));
+    }
+    p.series.push_back(s);
+  }
+  return p;
+}
+
+std::string figures(const SceneResult& r) {
+  std::ostringstream o;
+  bool constrained = false, bodies = false;
+  for (const auto& b : r.backends)
+    for (const auto& s : b.run.samples) {
+      constrained = constrained || s.constraint_violation > 0;
+      bodies = bodies || !s.bodies.empty();
+    }
+  std::vector<Plot> plots;
+  plots.push_back(over_time(r, "energy change", "|E(t) − E(0)| (J)", [](const core::Sample& f, const core::Sample& s) {
+    return std::abs(s.kinetic + s.potential - f.kinetic - f.potential);
+  }));
+  if (constrained)
+    plots.push_back(over_time(r, "constraint violation", "max |C|/|∇C| (m)",
+                              [](const core::Sample&, const core::Sample& s) { return s.constraint_violation; }));
+  if (bodies)
+    plots.push_back(over_time(r, "rotation drift", "distance of the stored rotation from a rotation",
+                              [](const core::Sample&, const core::Sample& s) { return s.rotation_drift; }));
+  if (r.backends.size() > 1) {
+    Plot d{r.scene.name + ": divergence between backends", "t (s)",
+           "largest position difference (m; below 1e-17 drawn at 1e-17)", false, true, {}};
+    for (std::size_t b = 1; b < r.backends.size(); ++b) {
+      Series s{r.backends[b].run.backend + " − " + r.backends[0].run.backend, {}, {}, false};
+      const auto& a = r.backends[0].run.samples;
+      const auto& c = r.backends[b].run.samples;
+      for (std::size_t k = 0; k < std::min(a.size(), c.size()); ++k) {
+        double worst = 0;
+        for (std::size_t i = 0; i < a[k].particles.size(); ++i)
+          worst = std::max(worst, (a[k].particles[i].position - c[k].particles[i].position).norm());
+        for (std::size_t i = 0; i < a[k].bodies.size(); ++i)
+          worst = std::max(worst, (a[k].bodies[i].position - c[k].bodies[i].position).norm());
+        s.x.push_back(a[k].t);
+        s.y.push_back(std::max(kFloor, worst));
+      }
+      d.series.push_back(s);
+    }
+    plots.push_back(d);
+    if (bodies) {
+      Plot a{r.scene.name + ": orientation divergence between backends", "t (s)",
+             "largest angle between orientations (rad; below 1e-17 drawn at 1e-17)", false, true, {}};
+      for (std::size_t b = 1; b < r.backends.size(); ++b) {
+        Series s{r.backends[b].run.backend + " − " + r.backends[0].run.backend, {}, {}, false};
+        const auto& x = r.backends[0].run.samples;
+        const auto& c = r.backends[b].run.samples;
+        for (std::size_t k = 0; k < std::min(x.size(), c.size()); ++k) {
+          double worst = 0;
+          for (std::size_t i = 0; i < x[k].bodies.size(); ++i)
+            worst = std::max(worst, 2 * std::acos(std::min(1.0, std::abs(x[k].bodies[i].orientation.dot(c[k].bodies[i].orientation)))));
+          s.x.push_back(x[k].t);
+          s.y.push_back(std::max(kFloor, worst));
+        }
+        a.series.push_back(s);
+      }
+      plots.push_back(a);
+    }
+  }
+  o << "<h2>Figures</h2>\n";
+  for (const auto& p : plots) {
+    std::string svg = render_svg(p);
+    const auto start = svg.find("<svg");  // drop the XML prologue: the SVG is inline
+    o << "<figure>" << (start == std::string::npos ? svg : svg.substr(start)) << "</figure>\n";
+  }
+  return o.str();
+}
+
+std::string page(const std::string& title, const std::string& body) {
+  return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + escape(title) +
+         "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}"
+         "table{border-collapse:collapse;margin:1em 0}th,td{border:1px solid #ccc;padding:.3em .6em}"
+         "td{text-align:right}td:first-child{text-align:left}th{background:#f3f3f3}"
+         "figure{margin:1em 0}svg{max-width:100%;height:auto}code{background:#f3f3f3;padding:0 .2em}</style>"
+         "</head><body>\n" +
+         body + "</body></html>\n";
+}
+
+}  // namespace
+
+std::string scene_report_html(const SceneResult& r, const MachineInfo& machine, int repeats) {
+  return page(r.scene.name + " — gacompare", markdown_to_html(scene_report_md(r, machine, repeats)) + figures(r));
+}
+
+std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats) {
+  return page("gacompare", markdown_to_html(summary_report_md(results, machine, repeats)));
+}
+
+}  // namespace gacompare::compare
