@@ -123,7 +123,8 @@ Mesh Mesh::from_triangles(std::string name, std::vector<Vec3> vertices, std::vec
     }
   for (const auto& [e, uses] : edges)
     if (uses.size() != 2)
-      throw fail("not closed: edge (" + std::to_string(e.first) + ", " + std::to_string(e.second) + ") belongs to " +
+      throw fail(std::string(uses.size() < 2 ? "not closed" : "not manifold") + ": edge (" + std::to_string(e.first) +
+                 ", " + std::to_string(e.second) + ") belongs to " +
                  std::to_string(uses.size()) + " triangle(s), expected 2 (first: triangle " +
                  std::to_string(uses[0].first) + ")");
   for (const auto& [e, uses] : edges)
@@ -345,7 +346,7 @@ Mesh mesh_for(const Shape& shape) {
 // --- convexity ------------------------------------------------------------------------
 
 Convexity convexity(const Mesh& mesh) {
-  const double tol = kCoplanar * mesh.size();
+  const double tol = 1e-6 * mesh.size();  // see mesh.hpp
   for (std::size_t p = 0; p < mesh.planes().size(); ++p) {
     const Plane& plane = mesh.planes()[p];
     for (std::size_t i = 0; i < mesh.vertices().size(); ++i) {

@@ -50,6 +50,7 @@ class Mesh {
   Mesh transformed(const Eigen::Matrix3d& rotation, const Vec3& translation) const;
 
  private:
+  Mesh() = default;  // only from_triangles makes one, so every Mesh is valid
   std::string name_;
   std::vector<Vec3> vertices_;
   std::vector<Triangle> triangles_;
@@ -83,9 +84,11 @@ Mesh load_obj(const std::filesystem::path& file);
 // moves them so that the centre of mass (core/mass_properties.hpp) is the origin.
 Mesh mesh_for(const Shape& shape);
 
-// Convexity: every vertex on or behind every face plane, within
-// tolerance = 1e-9 × size() (rounding of the plane offsets is ~1e-16 × size;
-// coplanar faces from OBJ files written with 6–9 digits stay well inside it).
+// Convexity: every vertex on or behind every face plane, within 1e-6 × size():
+// an OBJ file written with 6 significant digits bends a flat face by up to
+// ~1e-6 × size either way, and a dent that shallow is far below any penetration
+// tolerance the convex narrowphase works with. (Built shapes and Qhull hulls are
+// convex to ~1e-15 × size.)
 struct Convexity {
   bool convex = true;
   std::string reason;  // one line naming the mesh, the vertex and the plane; empty when convex

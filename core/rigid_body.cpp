@@ -1,33 +1,13 @@
 #include "core/rigid_body.hpp"
 
 #include "core/error.hpp"
+#include "core/mass_properties.hpp"
+#include "core/mesh.hpp"
 
 #include <algorithm>
 #include <variant>
 
 namespace gacompare::core {
-
-namespace {
-// Mass properties per unit density: volume and the inertia tensor about the centre
-// of mass divided by the density. Box: I = m/12 diag(b² + c², a² + c², a² + b²).
-struct UnitDensity {
-  double volume;
-  Eigen::Matrix3d inertia_per_density;
-};
-
-UnitDensity unit_density(const Shape& shape, const std::string& body) {
-  if (const auto* box = std::get_if<BoxShape>(&shape)) {
-    const double a = box->size.x(), b = box->size.y(), c = box->size.z();
-    const double v = a * b * c;
-    Eigen::Matrix3d i = Eigen::Matrix3d::Zero();
-    i.diagonal() << v / 12 * (b * b + c * c), v / 12 * (a * a + c * c), v / 12 * (a * a + b * b);
-    return {v, i};
-  }
-  throw input_error("body '" + body +
-                    "': mass properties of this shape come with core/mass_properties (issue #5, in progress); "
-                    "only boxes can be simulated for now");
-}
-}  // namespace
 
 BodyEffects body_effects(const Scene& scene) {
   BodyEffects fx;
@@ -44,12 +24,22 @@ BodyEffects body_effects(const Scene& scene) {
   return fx;
 }
 
+// Exact polyhedral mass properties of each body's mesh (core/mass_properties.hpp),
+// at unit density and then scaled to the body's mass or density. The inertia is
+// about the centre of mass, whatever coordinates a hull or OBJ mesh was given in:
+// the body's `position` is where that centre of mass is.
 std::vector<BodyProperties> body_properties(const Scene& scene) {
   std::vector<BodyProperties> out;
   for (const auto& body : scene.bodies) {
-    const UnitDensity u = unit_density(body.shape, body.name);
-    const double density = body.density ? *body.density : *body.mass / u.volume;
-    out.push_back({density * u.volume, density * u.inertia_per_density});
+    MassProperties unit;
+    try {
+      unit = mass_properties(mesh_for(body.shape), 1.0);
+    } catch (const Error& e) {
+      throw Error(e.kind(), "body '" + body.name + "': " + e.what());
+    }
+    if (!(unit.volume > 0)) throw input_error("body '" + body.name + "': its shape encloses no volume");
+    const double density = body.density ? *body.density : *body.mass / unit.volume;
+    out.push_back({density * unit.volume, density * unit.inertia});
   }
   return out;
 }
