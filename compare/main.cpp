@@ -16,6 +16,7 @@
 #include <iostream>
 #include <optional>
 #include <set>
+#include <unistd.h>
 
 #ifndef GACOMPARE_DATA_DIR
 #define GACOMPARE_DATA_DIR "data"
@@ -125,6 +126,7 @@ int list_scenes(const fs::path& dir) {
 
 int main(int argc, char** argv) {
   CLI::App app{"gacompare: traditional vs geometric-algebra physics, stage by stage"};
+  // Progress goes to stderr when it is a terminal; nothing when it is not, or with --quiet.
   app.set_version_flag("--version", "gacompare " + compare::tool_version());
   app.require_subcommand(1);
   app.fallthrough();  // global flags (--quiet) may follow the subcommand
@@ -164,6 +166,7 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+    if (!::isatty(STDERR_FILENO)) quiet = true;
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {

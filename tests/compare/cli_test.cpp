@@ -128,6 +128,8 @@ TEST(Cli, SeveralScenesGetOneFolderEachAndASummary) {
   EXPECT_TRUE(fs::exists(out / "falling_quadratic_drag" / "report.md"));
   const std::string md = read_text(out / "report.md");
   EXPECT_NE(md.find("projectile_linear_drag"), std::string::npos);
+  EXPECT_NE(md.find("by stage, across scenes"), std::string::npos) << md;
+  EXPECT_NE(md.find("**Verdict, from these numbers:** across 2 scenes"), std::string::npos) << md;
   EXPECT_NE(md.find("falling_quadratic_drag"), std::string::npos);
 }
 
