@@ -5,12 +5,16 @@
 #include "compare/machine.hpp"
 #include "compare/report.hpp"
 #include "compare/runner.hpp"
+#include "compare/sweep.hpp"
 #include "core/error.hpp"
 #include "core/scene.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <tuple>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -109,6 +113,140 @@ int check_scenes(const std::vector<core::Scene>& scenes, const fs::path& baselin
   return failed ? 1 : 0;
 }
 
+// "i/N" with 0 <= i < N.
+std::pair<int, int> parse_shard(const std::string& text) {
+  int i = -1, n = 0;
+  char slash = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/' || n < 1 || i < 0 || i >= n)
+    throw input_error("--shard '" + text + "': expected i/N with 0 <= i < N, e.g. 0/4");
+  return {i, n};
+}
+
+// "1e-3:1e-12" → decades 3..12.
+std::pair<int, int> parse_tolerances(const std::string& text) {
+  double hi = 0, lo = 0;
+  char colon = 0, extra = 0;
+  auto decade = [](double x) { return static_cast<int>(std::lround(-std::log10(x))); };
+  if (std::sscanf(text.c_str(), "%lf%c%lf%c", &hi, &colon, &lo, &extra) != 3 || colon != ':' || !(hi > 0) || !(lo > 0) ||
+      !(lo <= hi) || std::abs(std::pow(10.0, -decade(hi)) / hi - 1) > 1e-9 || std::abs(std::pow(10.0, -decade(lo)) / lo - 1) > 1e-9)
+    throw input_error("--tolerances '" + text + "': expected HI:LO, two powers of ten with HI >= LO, e.g. 1e-3:1e-12");
+  return {decade(hi), decade(lo)};
+}
+
+// "1e-2:4" → first step and number of halvings.
+std::pair<double, int> parse_steps(const std::string& text) {
+  double dt = 0;
+  int halvings = -1;
+  char colon = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%lf%c%d%c", &dt, &colon, &halvings, &extra) != 3 || colon != ':' || !(dt > 0) ||
+      halvings < 0 || halvings > 30)
+    throw input_error("--steps '" + text + "': expected DT:HALVINGS, e.g. 1e-2:4");
+  return {dt, halvings};
+}
+
+nlohmann::ordered_json sweep_manifest(const core::Scene& scene, const compare::SweepSpec& spec,
+                                      const std::vector<compare::Unit>& units) {
+  nlohmann::ordered_json ids = nlohmann::ordered_json::array();
+  for (const auto& u : units) ids.push_back(u.id);
+  return {{"scene_file", fs::absolute(scene.file).string()}, {"scene_sha256", scene.sha256},
+          {"repeats", spec.repeats}, {"max_duration", spec.max_duration}, {"units", ids}};
+}
+
+std::vector<nlohmann::json> read_units(const fs::path& cells, const std::vector<compare::Unit>& units,
+                                       const std::string& sha, std::size_t& missing) {
+  std::vector<nlohmann::json> out;
+  missing = 0;
+  for (const auto& u : units) {
+    const fs::path f = cells / (u.id + ".json");
+    std::ifstream in(f);
+    if (!in) {
+      ++missing;
+      continue;
+    }
+    try {
+      auto j = nlohmann::json::parse(in);
+      if (j.value("scene_sha256", "") != sha) {
+        ++missing;
+        continue;
+      }
+      out.push_back(std::move(j));
+    } catch (const nlohmann::json::exception& e) {
+      throw input_error(f.string() + ": cannot parse this sweep cell: " + e.what());
+    }
+  }
+  return out;
+}
+
+int run_sweep(const core::Scene& scene, const compare::SweepSpec& spec, const fs::path& out, std::pair<int, int> shard,
+              bool quiet) {
+  const core::Scene swept = compare::swept_scene(scene, spec);
+  const auto units = compare::sweep_units(spec, swept);
+  const fs::path cells = out / "cells";
+  fs::create_directories(cells);
+  compare::write_file_atomically(out / "sweep.json", sweep_manifest(scene, spec, units).dump(1) + "\n");
+  std::optional<core::Run> reference;
+  int ran = 0, skipped = 0;
+  for (std::size_t k = 0; k < units.size(); ++k) {
+    if (static_cast<int>(k % static_cast<std::size_t>(shard.second)) != shard.first) continue;
+    const fs::path f = cells / (units[k].id + ".json");
+    std::size_t missing = 0;
+    if (!read_units(cells, {units[k]}, swept.sha256, missing).empty()) {  // done before: resume
+      ++skipped;
+      continue;
+    }
+    if (!reference) reference = compare::sweep_reference(swept);
+    if (!quiet) std::cerr << "gacompare: sweep " << scene.name << ": " << units[k].id << "\n";
+    compare::write_file_atomically(f, compare::run_unit(units[k], swept, *reference, spec).dump(1) + "\n");
+    ++ran;
+  }
+  std::cerr << "gacompare: sweep " << scene.name << ": ran " << ran << " unit(s), skipped " << skipped
+            << " already done\n";
+  std::size_t missing = 0;
+  const auto done = read_units(cells, units, swept.sha256, missing);
+  if (missing == 0) compare::write_sweep_report(out, swept, done, spec);
+  else std::cerr << "gacompare: sweep " << scene.name << ": " << missing << " unit(s) of other shards still to run; "
+                 << "join the shards with gacompare merge\n";
+  std::cout << out.string() << "\n";
+  return 0;
+}
+
+int merge_sweeps(const std::vector<std::string>& dirs, const fs::path& out) {
+  nlohmann::json manifest;
+  for (const auto& d : dirs) {
+    std::ifstream in(fs::path(d) / "sweep.json");
+    if (!in) throw input_error(d + ": not a sweep folder (no sweep.json)");
+    nlohmann::json m;
+    try {
+      m = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+      throw input_error(d + "/sweep.json: cannot parse: " + e.what());
+    }
+    if (manifest.is_null()) manifest = m;
+    else if (m != manifest) throw input_error(d + ": a different sweep (scene, settings or units) than " + dirs.front());
+  }
+  const core::Scene scene = core::load_scene(manifest.at("scene_file").get<std::string>());
+  if (scene.sha256 != manifest.at("scene_sha256"))
+    throw input_error(manifest.at("scene_file").get<std::string>() + ": the scene changed since the sweep ran (sha256 differs)");
+  fs::create_directories(out / "cells");
+  for (const auto& d : dirs)
+    for (const auto& e : fs::directory_iterator(fs::path(d) / "cells"))
+      if (e.path().extension() == ".json") fs::copy_file(e.path(), out / "cells" / e.path().filename(), fs::copy_options::overwrite_existing);
+  compare::write_file_atomically(out / "sweep.json", manifest.dump(1) + "\n");
+  // The units come from the manifest; their records carry everything else.
+  std::vector<compare::Unit> units;
+  for (const auto& id : manifest.at("units")) units.push_back({id.get<std::string>(), "", "", {}});
+  compare::SweepSpec spec;
+  spec.repeats = manifest.at("repeats");
+  spec.max_duration = manifest.at("max_duration");
+  const core::Scene swept = compare::swept_scene(scene, spec);
+  std::size_t missing = 0;
+  const auto done = read_units(out / "cells", units, swept.sha256, missing);
+  if (missing) throw run_error(out.string() + ": " + std::to_string(missing) + " unit(s) missing from the shards given");
+  compare::write_sweep_report(out, swept, done, spec);
+  std::cout << out.string() << "\n";
+  return 0;
+}
+
 int list_scenes(const fs::path& dir) {
   if (!fs::is_directory(dir)) throw input_error(dir.string() + ": not a folder of scenes");
   std::vector<fs::path> files;
@@ -160,6 +298,28 @@ int main(int argc, char** argv) {
   chk->add_flag("--update", chk_update, "store fresh baselines instead of comparing with them");
   chk->add_option("--repeat", chk_repeat, "repeats per backend, for the timing ratio")->check(CLI::PositiveNumber);
 
+  std::string sw_scene, sw_out, sw_shard = "0/1", sw_tol = "1e-3:1e-12", sw_steps = "1e-2:4";
+  std::vector<std::string> sw_solvers{"euler", "rk4", "rk4_doubling", "cash_karp45", "symplectic_euler", "velocity_verlet"};
+  int sw_repeat = 3;
+  double sw_max_duration = 0;
+  bool sw_no_peer = false;
+  auto* sw = app.add_subcommand("sweep", "what accuracy costs in time: every solver x tolerance or step x backend");
+  sw->add_option("scene", sw_scene, "scene file (JSON)")->required();
+  sw->add_option("--out", sw_out, "sweep folder (cells/, sweep.md, sweep.csv, the diagram)")->required();
+  sw->add_option("--solvers", sw_solvers, "solvers to sweep")->delimiter(',');
+  sw->add_option("--tolerances", sw_tol, "adaptive solvers: HI:LO, powers of ten (default 1e-3:1e-12)");
+  sw->add_option("--steps", sw_steps, "fixed-step solvers: DT:HALVINGS (default 1e-2:4)");
+  sw->add_option("--repeats", sw_repeat, "timed runs per cell after one warm-up")->check(CLI::PositiveNumber);
+  sw->add_option("--max-duration", sw_max_duration, "cut the scene to this many seconds")->check(CLI::PositiveNumber);
+  sw->add_option("--shard", sw_shard, "run every N-th unit, starting at i: i/N (join with merge)");
+  sw->add_flag("--no-peer", sw_no_peer, "leave out Boost.Odeint's Cash-Karp");
+
+  std::vector<std::string> mg_dirs;
+  std::string mg_out;
+  auto* mg = app.add_subcommand("merge", "join the folders of a sharded sweep and write its report");
+  mg->add_option("dirs", mg_dirs, "the shards' sweep folders")->required();
+  mg->add_option("--out", mg_out, "the merged sweep folder")->required();
+
   std::string list_dir = std::string(GACOMPARE_DATA_DIR) + "/scenes";
   auto* list = app.add_subcommand("list", "list the bundled scenes");
   list->add_option("--scenes", list_dir, "folder of scene files");
@@ -178,6 +338,22 @@ int main(int argc, char** argv) {
     if (*run) return run_and_report(load_all({run_scene}), {run_backend}, run_repeat, run_out, quiet);
     if (*cmp) return run_and_report(load_all(cmp_scenes), cmp_backends, cmp_repeat, cmp_out, quiet);
     if (*chk) return check_scenes(load_all(chk_scenes), chk_baseline, chk_update, chk_repeat, quiet);
+    if (*sw) {
+      compare::SweepSpec spec;
+      for (const auto& n : sw_solvers) {
+        const auto m = core::solver_method_from_string(n);
+        if (!m) throw input_error("--solvers: unknown solver '" + n + "'");
+        spec.solvers.push_back(*m);
+      }
+      std::tie(spec.tol_from, spec.tol_to) = parse_tolerances(sw_tol);
+      std::tie(spec.dt_from, spec.dt_halvings) = parse_steps(sw_steps);
+      spec.repeats = sw_repeat;
+      spec.max_duration = sw_max_duration;
+      spec.peer = !sw_no_peer;
+      const auto shard = parse_shard(sw_shard);
+      return run_sweep(core::load_scene(sw_scene), spec, sw_out, shard, quiet);
+    }
+    if (*mg) return merge_sweeps(mg_dirs, mg_out);
     if (*list) return list_scenes(list_dir);
   } catch (const gacompare::Error& e) {
     std::cerr << "gacompare: " << e.what() << "\n";

@@ -215,6 +215,61 @@ TEST(Cli, CheckWithoutOrWithABrokenBaselineExitsTwo) {
   EXPECT_NE(broken.err.find("projectile_linear_drag.json: cannot parse this baseline"), std::string::npos) << broken.err;
 }
 
+// The error columns (method, backend, setting, error at end, RMS) of a sweep.md:
+// deterministic, unlike the times.
+std::string error_columns(const fs::path& md) {
+  std::istringstream in(read_text(md));
+  std::string line, out;
+  while (std::getline(in, line)) {
+    if (line.rfind("| ", 0) != 0) continue;
+    std::size_t bar = 0;
+    for (int k = 0; k < 5 && bar != std::string::npos; ++k) bar = line.find('|', bar + 1);
+    out += line.substr(0, bar) + "\n";
+  }
+  return out;
+}
+
+TEST(Cli, ShardedSweepMergesIntoTheUnshardedOneAndResumes) {
+  const std::string sweep = "sweep " + std::string(GACOMPARE_DATA_DIR) +
+                            "/scenes/kepler.json --solvers cash_karp45,rk4 --tolerances 1e-4:1e-7 --steps 1e-2:1 "
+                            "--repeats 1 --quiet --out ";
+  const fs::path whole = fresh_dir("sweep_whole");
+  const Result r = gacompare(sweep + whole.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(whole / "sweep.csv"));
+  EXPECT_TRUE(fs::exists(whole / "kepler_work_precision.svg"));
+  EXPECT_NE(r.err.find("ran 10 unit(s), skipped 0"), std::string::npos) << r.err;  // 4 + 2 + 4 odeint
+
+  // Run again: every unit is done, nothing reruns.
+  const Result again = gacompare(sweep + whole.string());
+  EXPECT_NE(again.err.find("ran 0 unit(s), skipped 10"), std::string::npos) << again.err;
+
+  std::string dirs;
+  for (int i = 0; i < 3; ++i) {
+    const fs::path d = fresh_dir("sweep_shard" + std::to_string(i));
+    ASSERT_EQ(gacompare(sweep + d.string() + " --shard " + std::to_string(i) + "/3").code, 0);
+    EXPECT_FALSE(fs::exists(d / "sweep.md"));  // a shard alone is incomplete
+    dirs += ' ';
+    dirs += d.string();
+  }
+  const fs::path merged = fresh_dir("sweep_merged");
+  const Result m = gacompare(std::string("merge") + dirs + " --out " + merged.string());
+  ASSERT_EQ(m.code, 0) << m.err;
+  EXPECT_EQ(error_columns(merged / "sweep.md"), error_columns(whole / "sweep.md"));
+
+  const Result partial = gacompare(std::string("merge ") + fresh_dir("sweep_shard0").string() + " --out " + fresh_dir("x").string());
+  EXPECT_EQ(partial.code, 2);  // sweep_shard0 was just emptied: not a sweep folder
+}
+
+TEST(Cli, SweepRejectsBadSpecs) {
+  const std::string scene = std::string(GACOMPARE_DATA_DIR) + "/scenes/kepler.json --out " + fresh_dir("bad").string();
+  EXPECT_EQ(gacompare("sweep " + scene + " --shard 3/3").code, 2);
+  EXPECT_EQ(gacompare("sweep " + scene + " --shard x").code, 2);
+  EXPECT_EQ(gacompare("sweep " + scene + " --tolerances 1e-12:1e-3").code, 2);
+  EXPECT_EQ(gacompare("sweep " + scene + " --tolerances 2e-3:1e-6").code, 2);
+  EXPECT_EQ(gacompare("sweep " + scene + " --solvers rk5").code, 2);
+}
+
 TEST(Cli, VersionHelpAndList) {
   const Result v = gacompare("--version");
   EXPECT_EQ(v.code, 0);

@@ -1,0 +1,68 @@
+#pragma once
+// `gacompare sweep`: what accuracy costs in time. Every solver × tolerance (or
+// step) × backend on one scene, plus Boost.Odeint's controlled Cash–Karp 5(4) as
+// a peer, each cell's error against a reference run and its time.
+//
+// The unit of work is a setting (one solver at one tolerance or step): both
+// backends run in it, interleaved, so drift hits them alike. Each finished unit
+// is written to DIR/cells/<unit>.json at once, so a sweep that is interrupted and
+// run again skips the units already done, and `--shard i/N` runs every N-th unit
+// for a scheduler to spread (a Slurm array, GNU parallel); `gacompare merge`
+// joins the shards' folders. The report (sweep.md, sweep.csv and the
+// work-precision diagram) is written once every unit is there.
+//
+// Reference: the traditional backend with cash_karp45 at abs = rel = 1e-13 (the
+// tightest tolerance at which these scenes still run in seconds); errors of cells
+// tighter than ~1e-11 measure the reference as much as the cell. Error: the
+// largest particle or body position difference at the final time, and the RMS
+// over all samples (50 a run: adaptive steps never cross a sample time, so a fine
+// sampling would cap every tolerance at the same step). Time: one warm-up, then
+// the median (min–max) of the repeats, each a whole simulation.
+#include "core/run.hpp"
+#include "core/scene.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gacompare::compare {
+
+struct SweepSpec {
+  std::vector<core::SolverMethod> solvers;
+  int tol_from = 3, tol_to = 12;  // adaptive: tolerances 10^-from … 10^-to, one per decade
+  double dt_from = 1e-2;          // fixed step: dt_from, halved dt_halvings times
+  int dt_halvings = 4;
+  int repeats = 3;
+  double max_duration = 0;        // > 0: cut the scene to this duration
+  bool peer = true;               // Boost.Odeint's Cash–Karp, where the scene has no projection
+};
+
+struct Unit {
+  std::string id;       // file name stem: solver-setting
+  std::string solver;   // a SolverMethod name, or "odeint_cash_karp54"
+  std::string setting;  // "tol 1e-06" / "dt 0.005"
+  core::SolverSpec spec;
+};
+
+// Every unit of the sweep, in a fixed order (the order shards are dealt from).
+std::vector<Unit> sweep_units(const SweepSpec& spec, const core::Scene& scene);
+
+// The scene as swept: generators expanded, cut to max_duration, 50 samples.
+core::Scene swept_scene(const core::Scene& scene, const SweepSpec& spec);
+
+// The reference run (traditional, cash_karp45 at 1e-13). Throws run_error if it fails.
+core::Run sweep_reference(const core::Scene& swept);
+
+// Runs one unit (both backends, or the peer) against the reference and returns
+// its record: {"unit", "solver", "setting", "scene_sha256", "cells": [...]}.
+nlohmann::ordered_json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& reference,
+                                const SweepSpec& spec);
+
+// Writes sweep.md, sweep.csv and <scene>_work_precision.svg into `dir` from the
+// units' records (in unit order).
+void write_sweep_report(const std::filesystem::path& dir, const core::Scene& scene,
+                        const std::vector<nlohmann::json>& units, const SweepSpec& spec);
+
+}  // namespace gacompare::compare
