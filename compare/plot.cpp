@@ -3,6 +3,7 @@
 #include "compare/machine.hpp"
 #include "core/error.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -31,9 +32,18 @@ std::string render_svg(const Plot& plot) {
   std::ostringstream script;
   script << "set terminal svg size 900,600 dynamic enhanced font 'sans,12' background rgb 'white'\n"
          << "set output " << quoted((dir / "plot.svg").string()) << "\n"
-         << "set title " << quoted(plot.title) << "\n"
+         << "set title " << quoted(plot.title) << " noenhanced\n"
          << "set xlabel " << quoted(plot.xlabel) << "\nset ylabel " << quoted(plot.ylabel) << "\n"
          << "set key outside right top\nset grid\n";
+  const bool bars = !plot.categories.empty();
+  if (bars) {
+    const double width = 0.8 / static_cast<double>(std::max<std::size_t>(1, plot.series.size()));
+    script << "set style fill solid 0.8 border -1\nset boxwidth " << width << "\nset xrange [-0.6:"
+           << static_cast<double>(plot.categories.size()) - 0.4 << "]\nset xtics (";
+    for (std::size_t i = 0; i < plot.categories.size(); ++i)
+      script << (i ? ", " : "") << quoted(plot.categories[i]) << " " << i;
+    script << ") noenhanced\nset yrange [0:*]\n";
+  }
   if (plot.logx) script << "set logscale x\nset format x '10^{%L}'\n";
   if (plot.logy) script << "set logscale y\nset format y '10^{%L}'\n";
   script << "plot ";
@@ -42,6 +52,13 @@ std::string render_svg(const Plot& plot) {
     const fs::path data = dir / ("series" + std::to_string(i) + ".dat");
     std::ofstream out(data);
     for (std::size_t k = 0; k < s.x.size(); ++k) out << s.x[k] << ' ' << s.y[k] << '\n';
+    if (bars) {  // boxes side by side around each category
+      const double width = 0.8 / static_cast<double>(plot.series.size());
+      const double shift = (static_cast<double>(i) - 0.5 * static_cast<double>(plot.series.size() - 1)) * width;
+      script << (i ? ", " : "") << quoted(data.string()) << " using ($1+" << shift << "):2 with boxes title "
+             << quoted(s.title) << " noenhanced";
+      continue;
+    }
     // Markers only where points are few enough to read; a time series is a line.
     const bool markers = s.x.size() <= 60;
     script << (i ? ", " : "") << quoted(data.string()) << " using 1:2 with " << (markers ? "linespoints" : "lines")

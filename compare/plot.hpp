@@ -18,6 +18,9 @@ struct Plot {
   std::string title, xlabel, ylabel;
   bool logx = false, logy = false;
   std::vector<Series> series;
+  // Bars instead of lines: series k's value for category i (x = i) is drawn as a
+  // box beside the other series', labelled with categories[i].
+  std::vector<std::string> categories;
 };
 
 // Renders `plot` as SVG text. Throws run_error naming the cause when gnuplot is

@@ -23,6 +23,10 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
 // violation, rotation drift and the divergence between backends over time.
 std::string scene_report_html(const SceneResult& r, const MachineInfo& machine, int repeats);
 std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats);
+// The pieces: markdown (headings, paragraphs, pipe tables) as HTML, and a
+// self-contained page around a body.
+std::string markdown_to_html(const std::string& md);
+std::string html_page(const std::string& title, const std::string& body);
 
 // Writes results.json, report.md, report.html and stages.csv for one scene into `dir`, or, for
 // several, one such folder per scene under `dir` plus dir/report.md and

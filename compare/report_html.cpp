@@ -4,6 +4,7 @@
 #include "compare/plot.hpp"
 #include "compare/report.hpp"
 #include "compare/results.hpp"
+#include "compare/stats.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -80,6 +81,8 @@ std::vector<std::string> cells(const std::string& row) {
   return out;
 }
 
+}  // namespace
+
 // Headings, paragraphs and pipe tables: the markdown report.md is made of.
 std::string markdown_to_html(const std::string& md) {
   std::istringstream in(md);
@@ -111,12 +114,14 @@ std::string markdown_to_html(const std::string& md) {
   return o.str();
 }
 
+namespace {
+
 // Log axes cannot show 0: values below the floor are drawn at it (said in the axis label).
 constexpr double kFloor = 1e-17;
 
 Plot over_time(const SceneResult& r, const std::string& title, const std::string& ylabel,
                double (*value)(const core::Sample& first, const core::Sample& s)) {
-  Plot p{r.scene.name + ": " + title, "t (s)", ylabel + " (values below 1e-17 drawn at 1e-17)", false, true, {}};
+  Plot p{r.scene.name + ": " + title, "t (s)", ylabel + " (values below 1e-17 drawn at 1e-17)", false, true, {}, {}};
   for (const auto& b : r.backends) {
     Series s{b.run.backend, {}, {}, false};
     for (const auto& smp : b.run.samples) {
@@ -148,7 +153,7 @@ std::string figures(const SceneResult& r) {
                               [](const core::Sample&, const core::Sample& s) { return s.rotation_drift; }));
   if (r.backends.size() > 1) {
     Plot d{r.scene.name + ": divergence between backends", "t (s)",
-           "largest position difference (m; below 1e-17 drawn at 1e-17)", false, true, {}};
+           "largest position difference (m; below 1e-17 drawn at 1e-17)", false, true, {}, {}};
     for (std::size_t b = 1; b < r.backends.size(); ++b) {
       Series s{r.backends[b].run.backend + " − " + r.backends[0].run.backend, {}, {}, false};
       const auto& a = r.backends[0].run.samples;
@@ -167,7 +172,7 @@ std::string figures(const SceneResult& r) {
     plots.push_back(d);
     if (bodies) {
       Plot a{r.scene.name + ": orientation divergence between backends", "t (s)",
-             "largest angle between orientations (rad; below 1e-17 drawn at 1e-17)", false, true, {}};
+             "largest angle between orientations (rad; below 1e-17 drawn at 1e-17)", false, true, {}, {}};
       for (std::size_t b = 1; b < r.backends.size(); ++b) {
         Series s{r.backends[b].run.backend + " − " + r.backends[0].run.backend, {}, {}, false};
         const auto& x = r.backends[0].run.samples;
@@ -184,6 +189,29 @@ std::string figures(const SceneResult& r) {
       plots.push_back(a);
     }
   }
+  // Stage times: median seconds per stage, a bar per backend.
+  Plot bars{r.scene.name + ": stage times", "stage", "seconds (median over repeats)", false, false, {}, {}};
+  std::vector<core::Stage> ran;
+  for (int k = 0; k < core::kStageCount; ++k) {
+    const auto st = static_cast<core::Stage>(k);
+    for (const auto& b : r.backends)
+      if (b.run.profile.ran(st)) {
+        ran.push_back(st);
+        break;
+      }
+  }
+  for (const auto st : ran) bars.categories.push_back(std::string(core::stage_name(st)));
+  for (const auto& b : r.backends) {
+    Series s{b.run.backend, {}, {}, false};
+    for (std::size_t i = 0; i < ran.size(); ++i) {
+      std::vector<double> secs;
+      for (const auto& p : b.profiles) secs.push_back(p[ran[i]].seconds);
+      s.x.push_back(static_cast<double>(i));
+      s.y.push_back(spread(secs).median);
+    }
+    bars.series.push_back(s);
+  }
+  if (!ran.empty()) plots.insert(plots.begin(), bars);
   o << "<h2>Figures</h2>\n";
   for (const auto& p : plots) {
     std::string svg = render_svg(p);
@@ -193,7 +221,9 @@ std::string figures(const SceneResult& r) {
   return o.str();
 }
 
-std::string page(const std::string& title, const std::string& body) {
+}  // namespace
+
+std::string html_page(const std::string& title, const std::string& body) {
   return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + escape(title) +
          "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}"
          "table{border-collapse:collapse;margin:1em 0}th,td{border:1px solid #ccc;padding:.3em .6em}"
@@ -203,14 +233,12 @@ std::string page(const std::string& title, const std::string& body) {
          body + "</body></html>\n";
 }
 
-}  // namespace
-
 std::string scene_report_html(const SceneResult& r, const MachineInfo& machine, int repeats) {
-  return page(r.scene.name + " — gacompare", markdown_to_html(scene_report_md(r, machine, repeats)) + figures(r));
+  return html_page(r.scene.name + " — gacompare", markdown_to_html(scene_report_md(r, machine, repeats)) + figures(r));
 }
 
 std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats) {
-  return page("gacompare", markdown_to_html(summary_report_md(results, machine, repeats)));
+  return html_page("gacompare", markdown_to_html(summary_report_md(results, machine, repeats)));
 }
 
 }  // namespace gacompare::compare

@@ -3,6 +3,7 @@
 #include "cga/backend.hpp"
 #include "compare/machine.hpp"
 #include "compare/plot.hpp"
+#include "compare/report.hpp"
 #include "compare/stats.hpp"
 #include "core/error.hpp"
 #include "core/generators.hpp"
@@ -252,7 +253,7 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
 
   // The diagram in the field's convention (SciML's benchmarks): x the error, y the
   // time, both logarithmic, a line with markers per solver and backend.
-  Plot p{scene.name + ": what accuracy costs in time", "error at the end (m)", "time (s), median", true, true, {}};
+  Plot p{scene.name + ": what accuracy costs in time", "error at the end (m)", "time (s), median", true, true, {}, {}};
   std::vector<std::pair<double, double>> front;
   for (const auto& r : rows) {
     const std::string title = r.solver + " (" + r.backend + ")";
@@ -270,7 +271,14 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
     for (const auto& [e, t] : front) f.x.push_back(e), f.y.push_back(t);
     p.series.push_back(f);
   }
-  if (!p.series.empty()) write_svg(p, dir / (scene.name + "_work_precision.svg"));
+  std::string figure;
+  if (!p.series.empty()) {
+    figure = render_svg(p);
+    write_file_atomically(dir / (scene.name + "_work_precision.svg"), figure);
+    figure = "<figure>" + figure.substr(std::min(figure.size(), figure.find("<svg"))) + "</figure>\n";
+  }
+  write_file_atomically(dir / "sweep.html", html_page(scene.name + " — what accuracy costs in time",
+                                                      markdown_to_html(md.str()) + figure));
 }
 
 }  // namespace gacompare::compare

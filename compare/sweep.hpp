@@ -60,8 +60,8 @@ core::Run sweep_reference(const core::Scene& swept);
 nlohmann::ordered_json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& reference,
                                 const SweepSpec& spec);
 
-// Writes sweep.md, sweep.csv and <scene>_work_precision.svg into `dir` from the
-// units' records (in unit order).
+// Writes sweep.md, sweep.csv, <scene>_work_precision.svg and sweep.html (the table
+// and the diagram on one page) into `dir` from the units' records (in unit order).
 void write_sweep_report(const std::filesystem::path& dir, const core::Scene& scene,
                         const std::vector<nlohmann::json>& units, const SweepSpec& spec);
 

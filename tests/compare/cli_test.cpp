@@ -238,6 +238,7 @@ TEST(Cli, ShardedSweepMergesIntoTheUnshardedOneAndResumes) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(whole / "sweep.csv"));
   EXPECT_TRUE(fs::exists(whole / "kepler_work_precision.svg"));
+  EXPECT_NE(read_text(whole / "sweep.html").find("<svg"), std::string::npos);
   EXPECT_NE(r.err.find("ran 10 unit(s), skipped 0"), std::string::npos) << r.err;  // 4 + 2 + 4 odeint
 
   // Run again: every unit is done, nothing reruns.
