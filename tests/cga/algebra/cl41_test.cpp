@@ -24,7 +24,7 @@ TEST(Cl41, NullVectorsAndUpProjection) {
     ASSERT_LT((*down(X * 3.5) - x).norm(), 1e-15);  // down normalises
   }
   EXPECT_FALSE(down(n_inf()).has_value());  // the point at infinity has no position
-  EXPECT_EQ(up(0, 0, 0).c[3], -0.5);        // the origin is n̄/2... up to sign: −½ n̄
+  EXPECT_EQ(up(0, 0, 0).c[3], -0.5);        // up(0) = −½ n̄ = −½ e + ½ ē
 }
 
 TEST(Cl41, TranslatorMovesPoints) {
