@@ -133,6 +133,23 @@ Plot over_time(const SceneResult& r, const std::string& title, const std::string
   return p;
 }
 
+// diff(first backend's sample, another backend's) over time, one series per other backend.
+Plot divergence_over_time(const SceneResult& r, const std::string& title, const std::string& ylabel,
+                          double (*diff)(const core::Sample&, const core::Sample&)) {
+  Plot p{r.scene.name + ": " + title, "t (s)", ylabel + "; below 1e-17 drawn at 1e-17)", false, true, {}, {}};
+  for (std::size_t b = 1; b < r.backends.size(); ++b) {
+    Series s{r.backends[b].run.backend + " − " + r.backends[0].run.backend, {}, {}, false};
+    const auto& a = r.backends[0].run.samples;
+    const auto& c = r.backends[b].run.samples;
+    for (std::size_t k = 0; k < std::min(a.size(), c.size()); ++k) {
+      s.x.push_back(a[k].t);
+      s.y.push_back(std::max(kFloor, diff(a[k], c[k])));
+    }
+    p.series.push_back(s);
+  }
+  return p;
+}
+
 std::string figures(const SceneResult& r) {
   std::ostringstream o;
   bool constrained = false, bodies = false;
@@ -152,42 +169,11 @@ std::string figures(const SceneResult& r) {
     plots.push_back(over_time(r, "rotation drift", "distance of the stored rotation from a rotation",
                               [](const core::Sample&, const core::Sample& s) { return s.rotation_drift; }));
   if (r.backends.size() > 1) {
-    Plot d{r.scene.name + ": divergence between backends", "t (s)",
-           "largest position difference (m; below 1e-17 drawn at 1e-17)", false, true, {}, {}};
-    for (std::size_t b = 1; b < r.backends.size(); ++b) {
-      Series s{r.backends[b].run.backend + " − " + r.backends[0].run.backend, {}, {}, false};
-      const auto& a = r.backends[0].run.samples;
-      const auto& c = r.backends[b].run.samples;
-      for (std::size_t k = 0; k < std::min(a.size(), c.size()); ++k) {
-        double worst = 0;
-        for (std::size_t i = 0; i < a[k].particles.size(); ++i)
-          worst = std::max(worst, (a[k].particles[i].position - c[k].particles[i].position).norm());
-        for (std::size_t i = 0; i < a[k].bodies.size(); ++i)
-          worst = std::max(worst, (a[k].bodies[i].position - c[k].bodies[i].position).norm());
-        s.x.push_back(a[k].t);
-        s.y.push_back(std::max(kFloor, worst));
-      }
-      d.series.push_back(s);
-    }
-    plots.push_back(d);
-    if (bodies) {
-      Plot a{r.scene.name + ": orientation divergence between backends", "t (s)",
-             "largest angle between orientations (rad; below 1e-17 drawn at 1e-17)", false, true, {}, {}};
-      for (std::size_t b = 1; b < r.backends.size(); ++b) {
-        Series s{r.backends[b].run.backend + " − " + r.backends[0].run.backend, {}, {}, false};
-        const auto& x = r.backends[0].run.samples;
-        const auto& c = r.backends[b].run.samples;
-        for (std::size_t k = 0; k < std::min(x.size(), c.size()); ++k) {
-          double worst = 0;
-          for (std::size_t i = 0; i < x[k].bodies.size(); ++i)
-            worst = std::max(worst, 2 * std::acos(std::min(1.0, std::abs(x[k].bodies[i].orientation.dot(c[k].bodies[i].orientation)))));
-          s.x.push_back(x[k].t);
-          s.y.push_back(std::max(kFloor, worst));
-        }
-        a.series.push_back(s);
-      }
-      plots.push_back(a);
-    }
+    plots.push_back(divergence_over_time(r, "divergence between backends", "largest position difference (m",
+                                         position_difference));
+    if (bodies)
+      plots.push_back(divergence_over_time(r, "orientation divergence between backends",
+                                           "largest angle between orientations (rad", orientation_difference));
   }
   // Stage times: median seconds per stage, a bar per backend.
   Plot bars{r.scene.name + ": stage times", "stage", "seconds (median over repeats)", false, false, {}, {}};

@@ -82,35 +82,37 @@ double energy_drift(const core::Run& run) {
   return scale > 0 ? worst / scale : 0.0;
 }
 
-double max_divergence(const SceneResult& r) {
+double position_difference(const core::Sample& a, const core::Sample& b) {
   double worst = 0;
-  for (std::size_t b = 1; b < r.backends.size(); ++b) {
-    const auto& a = r.backends[0].run.samples;
-    const auto& c = r.backends[b].run.samples;
-    for (std::size_t k = 0; k < std::min(a.size(), c.size()); ++k) {
-      for (std::size_t i = 0; i < a[k].particles.size(); ++i)
-        worst = std::max(worst, (a[k].particles[i].position - c[k].particles[i].position).norm());
-      for (std::size_t i = 0; i < a[k].bodies.size(); ++i)
-        worst = std::max(worst, (a[k].bodies[i].position - c[k].bodies[i].position).norm());
-    }
-  }
+  for (std::size_t i = 0; i < a.particles.size(); ++i)
+    worst = std::max(worst, (a.particles[i].position - b.particles[i].position).norm());
+  for (std::size_t i = 0; i < a.bodies.size(); ++i)
+    worst = std::max(worst, (a.bodies[i].position - b.bodies[i].position).norm());
   return worst;
 }
 
-double max_orientation_divergence(const SceneResult& r) {
+double orientation_difference(const core::Sample& a, const core::Sample& b) {
+  double worst = 0;
+  for (std::size_t i = 0; i < a.bodies.size(); ++i)
+    worst = std::max(worst, 2 * std::acos(std::min(1.0, std::abs(a.bodies[i].orientation.dot(b.bodies[i].orientation)))));
+  return worst;
+}
+
+namespace {
+// The largest `diff` between the first backend and each other one, over all samples.
+double max_over_runs(const SceneResult& r, double (*diff)(const core::Sample&, const core::Sample&)) {
   double worst = 0;
   for (std::size_t b = 1; b < r.backends.size(); ++b) {
     const auto& a = r.backends[0].run.samples;
     const auto& c = r.backends[b].run.samples;
-    for (std::size_t k = 0; k < std::min(a.size(), c.size()); ++k)
-      for (std::size_t i = 0; i < a[k].bodies.size(); ++i) {
-        // The angle of the rotation taking one orientation to the other: 2 acos |q1·q2|.
-        const double d = std::min(1.0, std::abs(a[k].bodies[i].orientation.dot(c[k].bodies[i].orientation)));
-        worst = std::max(worst, 2 * std::acos(d));
-      }
+    for (std::size_t k = 0; k < std::min(a.size(), c.size()); ++k) worst = std::max(worst, diff(a[k], c[k]));
   }
   return worst;
 }
+}  // namespace
+
+double max_divergence(const SceneResult& r) { return max_over_runs(r, position_difference); }
+double max_orientation_divergence(const SceneResult& r) { return max_over_runs(r, orientation_difference); }
 
 nlohmann::ordered_json results_json(const SceneResult& r, const MachineInfo& machine, int repeats) {
   json runs = json::array();

@@ -10,6 +10,13 @@ namespace gacompare::compare {
 // The issue #2 schema: {"tool", "scene", "machine", "repeats", "runs": [...]}.
 nlohmann::ordered_json results_json(const SceneResult& r, const MachineInfo& machine, int repeats);
 
+// Between two samples of the same scene: the largest distance between their
+// particle and body positions, and the largest angle (rad) between their body
+// orientations, 2 acos |q1·q2|. The divergence measures below and the report's
+// divergence figures are built on these.
+double position_difference(const core::Sample& a, const core::Sample& b);
+double orientation_difference(const core::Sample& a, const core::Sample& b);
+
 // Largest distance between the backends' particle and body positions over all
 // samples (0 with fewer than two backends): the divergence between backends.
 double max_divergence(const SceneResult& r);

@@ -67,21 +67,19 @@ TYPED_TEST_P(RigidCases, FreeFlightFollowsTheParabolaAndKeepsItsSpin) {
 // Lifshitz §37). The test measures successive upward zero crossings of the
 // body-frame ω₂ (which goes as sn) and asks for the issue's 1%.
 TYPED_TEST_P(RigidCases, DzhanibekovFlipMatchesTheEllipticPeriod) {
+  // Moments of the 0.1 × 0.4 × 0.9 box about its body axes: x the largest, y the
+  // intermediate, z the smallest. Spun about y with a nudge about z.
   const double a = 0.1, b = 0.4, c = 0.9, m = 1.0;
-  const double I1 = m / 12 * (b * b + c * c), I2 = m / 12 * (a * a + c * c), I3 = m / 12 * (a * a + b * b);
-  // Body axes sorted: x has the largest moment here, z the smallest; index them as I3 > I2 > I1.
-  const Eigen::Vector3d w(0.0, 10.0, 0.01);  // about y (intermediate), a nudge about z
+  const double Imax = m / 12 * (b * b + c * c), Imid = m / 12 * (a * a + c * c), Imin = m / 12 * (a * a + b * b);
+  const Eigen::Vector3d w(0.0, 10.0, 0.01);
   const auto scene = rigid_scene(
       R"({"name": "t", "shape": {"box": [0.1, 0.4, 0.9]}, "mass": 1.0, "position": [0, 0, 0],
           "angular_velocity": [0.0, 10.0, 0.01]})",
       "", TypeParam::options, 12.0, 0.002, R"({"method": "cash_karp45", "dt": 1e-3, "abs_tol": 1e-11, "rel_tol": 1e-11})");
   const core::Run run = core::simulate<typename TypeParam::Backend>(scene);
   ASSERT_FALSE(run.error.has_value()) << *run.error;
-  // Moments about the body axes: x → I1 (largest), y → I2, z → I3 (smallest).
-  const double Ix = I1, Iy = I2, Iz = I3;
-  const double L2 = Ix * Ix * w.x() * w.x() + Iy * Iy * w.y() * w.y() + Iz * Iz * w.z() * w.z();
-  const double E2 = Ix * w.x() * w.x() + Iy * w.y() * w.y() + Iz * w.z() * w.z();  // 2E
-  const double Imin = Iz, Imid = Iy, Imax = Ix;
+  const double L2 = Imax * Imax * w.x() * w.x() + Imid * Imid * w.y() * w.y() + Imin * Imin * w.z() * w.z();
+  const double E2 = Imax * w.x() * w.x() + Imid * w.y() * w.y() + Imin * w.z() * w.z();  // 2E
   double period;
   if (L2 > E2 * Imid) {
     const double k2 = (Imid - Imin) * (E2 * Imax - L2) / ((Imax - Imid) * (L2 - E2 * Imin));
