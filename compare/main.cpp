@@ -1,6 +1,7 @@
 // gacompare: runs physics scenes through the traditional and geometric-algebra
 // backends and writes comparison reports. Results go to files, logs to stderr.
 // Exit codes: 0 success, 1 a run or check failed, 2 bad usage or bad input.
+#include "compare/collide.hpp"
 #include "compare/check.hpp"
 #include "compare/machine.hpp"
 #include "compare/report.hpp"
@@ -247,6 +248,34 @@ int merge_sweeps(const std::vector<std::string>& dirs, const fs::path& out) {
   return 0;
 }
 
+// `gacompare collide`: the JSON array on stdout (or --out), the table on stderr
+// (or --table FILE). Exit 1 when a backend disagrees with the reference on a
+// pair outside the touching band (the referees' disagreements are reported, not
+// failed: FCL's and Bullet's answers are what the comparison is about).
+int collide_files(const std::vector<std::string>& files, const compare::CollideOptions& options, const std::string& out,
+                  const std::string& table) {
+  std::vector<collision::CollisionCase> cases;
+  for (const auto& f : files) {
+    auto more = collision::load_cases(f);
+    for (auto& c : more) cases.push_back(std::move(c));
+  }
+  const nlohmann::json entries = compare::collide(cases, options);
+  if (out.empty()) std::cout << entries.dump(1) << "\n";
+  else compare::write_file_atomically(out, entries.dump(1) + "\n");
+  const std::string summary = compare::collide_table(entries);
+  if (table.empty() || table == "-") std::cerr << summary;
+  else compare::write_file_atomically(table, summary);
+  int failed = 0;
+  for (const auto& e : entries)
+    for (const auto& m : e["disagree"])
+      if (m == "traditional" || m == "cga") {
+        std::cerr << "gacompare: collide: " << e["name"].get<std::string>() << ": " << m.get<std::string>()
+                  << " disagrees with the separating-axis reference\n";
+        ++failed;
+      }
+  return failed ? 1 : 0;
+}
+
 int list_scenes(const fs::path& dir) {
   if (!fs::is_directory(dir)) throw input_error(dir.string() + ": not a folder of scenes");
   std::vector<fs::path> files;
@@ -324,6 +353,24 @@ int main(int argc, char** argv) {
   auto* list = app.add_subcommand("list", "list the bundled scenes");
   list->add_option("--scenes", list_dir, "folder of scene files");
 
+  std::vector<std::string> col_files;
+  compare::CollideOptions col_options;
+  std::string col_out, col_table, col_disagree;
+  auto* col = app.add_subcommand("collide", "narrowphase of convex pairs: both backends, the exact SAT, FCL and Bullet");
+  col->add_option("cases", col_files, "case files (JSON array of {\"a\": body, \"b\": body})")->required();
+  col->add_option("--repeat", col_options.repeat, "timed queries per method and pair, interleaved")->check(CLI::PositiveNumber);
+  col->add_option("--out", col_out, "write the JSON array here instead of stdout");
+  col->add_option("--table", col_table, "write the agreement table (markdown) here instead of stderr");
+  col->add_option("--disagreements", col_disagree, "folder for replayable case files of every disagreement");
+
+  std::uint64_t corpus_seed = 2026;
+  int corpus_count = 200;
+  std::string corpus_out;
+  auto* corpus = app.add_subcommand("corpus", "write the seeded random collision corpus (data/collision/random.json)");
+  corpus->add_option("--seed", corpus_seed, "random seed");
+  corpus->add_option("--count", corpus_count, "pairs")->check(CLI::PositiveNumber);
+  corpus->add_option("--out", corpus_out, "case file to write")->required();
+
   try {
     app.parse(argc, argv);
     if (!::isatty(STDERR_FILENO)) quiet = true;
@@ -355,6 +402,14 @@ int main(int argc, char** argv) {
     }
     if (*mg) return merge_sweeps(mg_dirs, mg_out);
     if (*list) return list_scenes(list_dir);
+    if (*col) {
+      col_options.disagreements = col_disagree;
+      return collide_files(col_files, col_options, col_out, col_table);
+    }
+    if (*corpus) {
+      compare::write_file_atomically(corpus_out, compare::random_corpus(corpus_seed, corpus_count).dump(1) + "\n");
+      return 0;
+    }
   } catch (const gacompare::Error& e) {
     std::cerr << "gacompare: " << e.what() << "\n";
     return e.kind() == ErrorKind::input ? 2 : 1;

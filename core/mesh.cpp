@@ -156,6 +156,20 @@ Mesh Mesh::from_triangles(std::string name, std::vector<Vec3> vertices, std::vec
     m.triangle_plane_.push_back(static_cast<int>(it - m.planes_.begin()));
     if (it == m.planes_.end()) m.planes_.push_back({n, d});
   }
+  m.triangle_edges_.assign(triangles.size(), {-1, -1, -1});
+  for (const auto& [e, uses] : edges) {
+    const int p0 = m.triangle_plane_[uses[0].first], p1 = m.triangle_plane_[uses[1].first];
+    if (p0 == p1) continue;  // a diagonal inside a polygonal face
+    const int index = static_cast<int>(m.edges_.size());
+    m.edges_.push_back({e.first, e.second});
+    m.edge_planes_.push_back(uses[0].second ? std::array<int, 2>{p0, p1} : std::array<int, 2>{p1, p0});
+    for (const auto& use : uses)
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t t = use.first;
+        const int u = triangles[t][k], v = triangles[t][(k + 1) % 3];
+        if (std::min(u, v) == e.first && std::max(u, v) == e.second) m.triangle_edges_[t][k] = index;
+      }
+  }
   m.vertices_ = std::move(vertices);
   m.triangles_ = std::move(triangles);
   return m;

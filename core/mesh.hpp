@@ -44,6 +44,17 @@ class Mesh {
   // plane (§2.3.3 fn 21), so a box has 6, not 12.
   const std::vector<Plane>& planes() const { return planes_; }
   const std::vector<int>& triangle_plane() const { return triangle_plane_; }  // plane index per triangle
+  // Feature edges: the undirected edges whose two triangles lie on different
+  // planes (a box has 12; the diagonals that triangulate its faces are not
+  // edges of the solid). The narrowphase's edge × edge axes and edge–edge
+  // contacts use these. Each as (lower index, higher index).
+  const std::vector<std::array<int, 2>>& edges() const { return edges_; }
+  // The two distinct planes beside each feature edge: first the plane of the
+  // triangle that runs the edge from edges()[i][0] to [1], then the other.
+  const std::vector<std::array<int, 2>>& edge_planes() const { return edge_planes_; }
+  // Per triangle, the feature edge index of its edge k (vertex k to k+1), or −1
+  // for a diagonal inside a polygonal face.
+  const std::vector<std::array<int, 3>>& triangle_edges() const { return triangle_edges_; }
   double size() const { return size_; }  // bounding-box diagonal: the length scale of tolerances
 
   // The same solid moved rigidly: x -> R x + t (R a rotation).
@@ -57,6 +68,8 @@ class Mesh {
   std::vector<Vec3> normals_;
   std::vector<Plane> planes_;
   std::vector<int> triangle_plane_;
+  std::vector<std::array<int, 2>> edges_, edge_planes_;
+  std::vector<std::array<int, 3>> triangle_edges_;
   double size_ = 0;
 };
 

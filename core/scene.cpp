@@ -537,28 +537,73 @@ class Loader {
     return b;
   }
 
+ public:
+  std::vector<CollisionCaseSpec> collision_cases(const json& root) {
+    const Val top{ctx_, &root, ""};
+    if (!root.is_array() || root.empty()) top.expected("a non-empty array of pairs {\"a\": body, \"b\": body}");
+    std::vector<CollisionCaseSpec> out;
+    for (std::size_t i = 0; i < root.size(); ++i) {
+      static constexpr Keys<3> keys = {"name", "a", "b"};
+      const Val v = top.at(i);
+      Obj o(v, keys, "an object {\"name\": ..., \"a\": body, \"b\": body}");
+      CollisionCaseSpec c;
+      c.name = "case " + std::to_string(i);
+      if (auto n = o.opt("name")) c.name = str(*n);
+      c.a = placed_shape(o.req("a"));
+      c.b = placed_shape(o.req("b"));
+      out.push_back(std::move(c));
+    }
+    return out;
+  }
+
+ private:
+  // A shape key of the scene format beside "position" and "orientation".
+  PlacedShape placed_shape(const Val& v) {
+    static constexpr Keys<9> keys = {"box",  "tetrahedron", "pyramid",  "octahedron", "icosahedron",
+                                     "hull", "mesh",        "position", "orientation"};
+    const std::string what = "an object with one shape key (" + join(kShapes) + "), \"position\" and optionally \"orientation\"";
+    Obj o(v, keys, what);
+    json only_shape = json::object();
+    for (const auto& [k, x] : v.j->items())
+      if (k != "position" && k != "orientation") only_shape[k] = x;
+    if (only_shape.size() != 1) v.fail("expected " + what + ", got " + std::to_string(only_shape.size()) + " shape keys");
+    PlacedShape p;
+    const std::string key = only_shape.begin().key();
+    // Parse the shape from the original value, so paths in messages point into the file.
+    p.shape = shape_value(key, v.key(key));
+    p.position = vec3(o.req("position"));
+    if (auto q = o.opt("orientation")) p.orientation = quaternion(*q);
+    return p;
+  }
+
   Shape shape(const Val& v) {
     const std::string what = "an object with exactly one key: " + join(kShapes);
     if (!v.j || !v.j->is_object() || v.j->size() != 1) v.expected(what);
     Obj o(v, kShapes, what);
-    if (auto x = o.opt("box")) return BoxShape{vec3(*x, Range::positive)};
-    if (auto x = o.opt("tetrahedron")) return TetrahedronShape{number(*x, Range::positive)};
-    if (auto x = o.opt("octahedron")) return OctahedronShape{number(*x, Range::positive)};
-    if (auto x = o.opt("icosahedron")) return IcosahedronShape{number(*x, Range::positive)};
-    if (auto x = o.opt("pyramid")) {
+    const std::string key = v.j->begin().key();
+    return shape_value(key, o.req(key));
+  }
+
+  // The value of one shape key.
+  Shape shape_value(const std::string& key, const Val& x) {
+    if (key == "box") return BoxShape{vec3(x, Range::positive)};
+    if (key == "tetrahedron") return TetrahedronShape{number(x, Range::positive)};
+    if (key == "octahedron") return OctahedronShape{number(x, Range::positive)};
+    if (key == "icosahedron") return IcosahedronShape{number(x, Range::positive)};
+    if (key == "pyramid") {
       static constexpr Keys<2> keys = {"base", "height"};
-      Obj p(*x, keys, "an object {\"base\": b, \"height\": h}");
+      Obj p(x, keys, "an object {\"base\": b, \"height\": h}");
       return PyramidShape{number(p.req("base"), Range::positive), number(p.req("height"), Range::positive)};
     }
-    if (auto x = o.opt("hull")) {
+    if (key == "hull") {
       const std::string hull_what = "an array of at least 4 points [x, y, z], not all in one plane";
-      if (!x->j->is_array() || x->j->size() < 4) x->expected(hull_what);
+      if (!x.j->is_array() || x.j->size() < 4) x.expected(hull_what);
       HullShape h;
-      for (std::size_t i = 0; i < x->j->size(); ++i) h.points.push_back(vec3(x->at(i)));
-      if (!spans_volume(h.points)) x->fail("expected " + hull_what + ", got points that span no volume");
+      for (std::size_t i = 0; i < x.j->size(); ++i) h.points.push_back(vec3(x.at(i)));
+      if (!spans_volume(h.points)) x.fail("expected " + hull_what + ", got points that span no volume");
       return h;
     }
-    const Val m = o.req("mesh");
+    const Val& m = x;
     const std::string rel = str(m);
     const fs::path resolved = (ctx_.dir / fs::path(rel)).lexically_normal();
     std::error_code ec;
@@ -813,13 +858,20 @@ Scene parse_scene(const std::string& text, const std::filesystem::path& file) {
   return s;
 }
 
-Scene load_scene(const std::filesystem::path& file) {
+std::vector<CollisionCaseSpec> parse_collision_cases(const std::string& text, const std::filesystem::path& file) {
+  const Ctx ctx{file.string(), file.parent_path()};
+  const json root = parse_json(text, ctx);
+  return Loader(ctx).collision_cases(root);
+}
+
+namespace {
+std::string read_text(const std::filesystem::path& file, const std::string& what) {
   const std::string where = file.string();
   std::error_code ec;
   if (fs::is_directory(file, ec))
-    throw input_error(one_line(where + ": expected a scene file, got a directory"));
+    throw input_error(one_line(where + ": expected a " + what + ", got a directory"));
   std::FILE* f = std::fopen(where.c_str(), "rb");
-  if (!f) throw input_error(one_line(where + ": cannot open the scene file: " + std::strerror(errno)));
+  if (!f) throw input_error(one_line(where + ": cannot open the " + what + ": " + std::strerror(errno)));
   std::string text;
   char buffer[65536];
   std::size_t n = 0;
@@ -827,8 +879,15 @@ Scene load_scene(const std::filesystem::path& file) {
   const bool failed = std::ferror(f) != 0;
   const int error = errno;
   std::fclose(f);
-  if (failed) throw input_error(one_line(where + ": cannot read the scene file: " + std::strerror(error)));
-  return parse_scene(text, file);
+  if (failed) throw input_error(one_line(where + ": cannot read the " + what + ": " + std::strerror(error)));
+  return text;
+}
+}  // namespace
+
+Scene load_scene(const std::filesystem::path& file) { return parse_scene(read_text(file, "scene file"), file); }
+
+std::vector<CollisionCaseSpec> load_collision_cases(const std::filesystem::path& file) {
+  return parse_collision_cases(read_text(file, "collision case file"), file);
 }
 
 }  // namespace gacompare::core

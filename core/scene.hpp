@@ -178,4 +178,24 @@ Scene load_scene(const std::filesystem::path& file);
 // Same, from text already in memory; `file` is used in messages and to resolve meshes.
 Scene parse_scene(const std::string& text, const std::filesystem::path& file);
 
+// Collision cases (`gacompare collide`, issue #6): a JSON array of pairs
+//   {"name": "...", "a": BODY, "b": BODY}      ("name" optional: "case N")
+// where BODY holds exactly one shape key of the scene format ("hull": [[x, y, z],
+// ...], "box": [x, y, z], "pyramid": {...}, "mesh": "file.obj", ...), "position":
+// [x, y, z] and optionally "orientation": [w, x, y, z] (identity when absent).
+// The shape keeps its own coordinates (a hull is not recentred): position and
+// orientation place them, x_world = R x + position. Same strict validation as
+// scenes; an empty array is an error.
+struct PlacedShape {
+  Shape shape;
+  Vec3 position{0, 0, 0};
+  Eigen::Vector4d orientation{1, 0, 0, 0};
+};
+struct CollisionCaseSpec {
+  std::string name;
+  PlacedShape a, b;
+};
+std::vector<CollisionCaseSpec> load_collision_cases(const std::filesystem::path& file);
+std::vector<CollisionCaseSpec> parse_collision_cases(const std::string& text, const std::filesystem::path& file);
+
 }  // namespace gacompare::core

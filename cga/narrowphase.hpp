@@ -1,0 +1,65 @@
+#pragma once
+// The narrowphase's view of a placed convex body in conformal geometric algebra
+// (issue #6, §2.4.3–2.4.4): vertices as conformal points X = up(x), face planes
+// as dual planes π = n̂ + d n, a face test by the inner product X·π = n̂·x − d,
+// edge axes by the dual of the outer product (a ∧ b)* in Cl(3,0), and the
+// meet/reciprocal-frame segment–triangle. The algorithm over it is written
+// once: core/narrowphase.hpp. Twin: traditional/narrowphase.hpp.
+//
+// The rotation reaches the vertices as the rotor's 3×3 matrix, applied once
+// per vertex: the outermorphism form that is GA's best practice for many
+// points (DESIGN.md, "Fair comparison"); bench/rigid_bench times the sandwich.
+#include "cga/algebra/cl3.hpp"
+#include "cga/geometry/entities.hpp"
+#include "cga/segment_triangle.hpp"
+#include "core/narrowphase.hpp"
+
+#include <vector>
+
+namespace gacompare::cga {
+
+class Body {
+ public:
+  Body(const collision::Placed& placed, const Vec3& origin) : mesh_(placed.mesh) {
+    const Eigen::Matrix3d& r = placed.pose.rotation;
+    const Vec3 t = placed.pose.position - origin;
+    points_.reserve(mesh_->vertices().size());
+    Vec3 sum = Vec3::Zero();
+    for (const Vec3& x : mesh_->vertices()) {
+      const Vec3 y = r * x + t;
+      points_.push_back(up(y));
+      sum += y;
+    }
+    centre_ = sum / static_cast<double>(points_.size());
+    planes_.reserve(mesh_->planes().size());
+    for (const auto& p : mesh_->planes()) {
+      const Vec3 n = r * p.normal;
+      planes_.push_back(plane(n, p.offset + n.dot(t)));
+    }
+  }
+  const core::Mesh& mesh() const { return *mesh_; }
+  Vec3 vertex(int i) const { return detail::euclid(points_[i]); }  // up() gives weight 1: no division
+  Vec3 normal(int k) const { return detail::euclid(planes_[k]); }  // unit: plane() normalises
+  Vec3 centre() const { return centre_; }
+  // §2.4.3: X·π = n̂·x − d, > 0 outside (entities.hpp).
+  double plane_distance(int k, const Body& other, int j) const { return scalar_product(other.points_[j], planes_[k]); }
+  static Vec3 edge_axis(const Vec3& da, const Vec3& db) { return to_eigen(axial(vector3(da) ^ vector3(db))); }
+  static std::optional<collision::SegmentHit> segment_triangle(const Vec3& l0, const Vec3& l1, const Vec3& t0,
+                                                               const Vec3& t1, const Vec3& t2) {
+    return cga::segment_triangle(l0, l1, t0, t1, t2);
+  }
+
+ private:
+  const core::Mesh* mesh_;
+  std::vector<ConformalPoint> points_;
+  std::vector<DualPlane> planes_;
+  Vec3 centre_;
+};
+
+inline collision::PairContact narrowphase(const collision::Placed& a, const collision::Placed& b,
+                                          collision::Method method,
+                                          std::vector<collision::FeatureContact>* contacts = nullptr) {
+  return collision::narrowphase<Body>(a, b, method, contacts);
+}
+
+}  // namespace gacompare::cga

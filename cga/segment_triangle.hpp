@@ -1,0 +1,60 @@
+#pragma once
+// Segment through triangle, the conformal way (§2.4.4 after [7], eq. 43–46).
+// Twin: traditional/segment_triangle.hpp (same name, same result type).
+//
+// Stage 1: the line L = L0 ∧ L1 ∧ n meets the plane Φ = T0 ∧ T1 ∧ T2 ∧ n in a
+// flat point; with the plane dual, π = Φ*, the meet is one contraction
+//   π⌋L = (π·L0) L1∧n − (π·L1) L0∧n        (π·n = 0 for a plane),
+// the flat point of (π·L0) L1 − (π·L1) L0. Its position: divide by the weight
+// (meet.hpp's flat_point; the report reads the e_i∧n components alone, right
+// only for unit weight). "On the segment": the report compares the point with
+// the bounding box of the segment's ends, which fails for a segment parallel to
+// an axis (a box of zero width, decided by rounding). The meet's own
+// coefficients say it exactly: the point is between L0 and L1 iff π·L0 and
+// π·L1, the ends' signed distances from the plane, do not have the same sign.
+//
+// Stage 2, eq. 43–46: the reciprocal frame of T0, T1, T2 in Φ,
+//   T^i = (n ∧ L_i)·Φ / Φ²,  L_0 = T1∧T2, L_1 = T2∧T0, L_2 = T0∧T1,
+// gives the barycentric coordinates λ_i = T^i·I of the up-projected point I
+// (I·n = −1 makes them sum to 1). Eq. 44 writes |Φ|⁻² with |Φ|² = −Φ²; the sign
+// that makes T^i·T_i = +1 in our conventions (tested) is the one used here.
+// Inside for every λ_i ≥ 0 (the report also asks λ_i ≤ 1, implied by the sum).
+//
+// Parallel segment: the same predicate as the twin, |π·(L1 − L0)| ≤ kSinTol·|L1 − L0|
+// for the normalised plane.
+#include "cga/algebra/cl41.hpp"
+#include "cga/geometry/meet.hpp"
+#include "core/collision.hpp"
+
+#include <cmath>
+#include <optional>
+
+namespace gacompare::cga {
+
+inline std::optional<collision::SegmentHit> segment_triangle(const Eigen::Vector3d& l0, const Eigen::Vector3d& l1,
+                                                             const Eigen::Vector3d& t0, const Eigen::Vector3d& t1,
+                                                             const Eigen::Vector3d& t2) {
+  const ConformalPoint L0 = up(l0), L1 = up(l1), T0 = up(t0), T1 = up(t1), T2 = up(t2);
+  const auto n = n_inf();
+  const Quadvector5 phi = ((T0 ^ T1) ^ T2) ^ n;
+  const DualPlane pi = !phi;  // any scale: only ratios are read below
+  const double alpha = scalar_product(pi, L0), beta = scalar_product(pi, L1);
+  const double pn = detail::euclid(pi).norm();
+  if (!(std::abs(alpha - beta) > kSinTol * pn * (l1 - l0).norm())) return std::nullopt;  // parallel
+  if ((alpha > 0 && beta > 0) || (alpha < 0 && beta < 0)) return std::nullopt;         // both ends on one side
+  const Line line = widen<Line::blades>((L0 ^ L1) ^ n);
+  const Bivector5 flat = pi | line;  // the meet
+  if (!(std::abs(flat[blade::eebar]) > 0)) return std::nullopt;
+  const Eigen::Vector3d point = detail::flat_point(flat);
+  // Reciprocal frame (eq. 43–46), scaled by 1/Φ².
+  const double phi2 = scalar_product(phi, phi);
+  const ConformalPoint I = up(point);
+  const auto lambda = [&](const ConformalPoint& p, const ConformalPoint& q) {
+    return scalar_product((n ^ (p ^ q)) | phi, I) / phi2;
+  };
+  const std::array<double, 3> bary{lambda(T1, T2), lambda(T2, T0), lambda(T0, T1)};
+  if (bary[0] < 0 || bary[1] < 0 || bary[2] < 0) return std::nullopt;
+  return collision::SegmentHit{point, alpha / (alpha - beta), bary};
+}
+
+}  // namespace gacompare::cga

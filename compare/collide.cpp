@@ -1,0 +1,178 @@
+#include "compare/collide.hpp"
+
+#include "cga/narrowphase.hpp"
+#include "compare/machine.hpp"
+#include "compare/referee.hpp"
+#include "compare/stats.hpp"
+#include "core/error.hpp"
+#include "core/separating_axis.hpp"
+#include "traditional/narrowphase.hpp"
+
+#include <Eigen/Geometry>
+
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <iomanip>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+namespace gacompare::compare {
+
+namespace {
+
+using collision::PairContact;
+using Clock = std::chrono::steady_clock;
+
+nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json answer(const PairContact& r, double seconds) {
+  return {{"intersect", r.intersect}, {"depth", r.depth},       {"normal", vec(r.normal)},
+          {"contact", vec(r.contact)}, {"feature", collision::feature_name(r.feature)}, {"time_s", seconds}};
+}
+
+std::string slug(const std::string& s) {
+  std::string out;
+  for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '-';
+  return out.substr(0, 60);
+}
+
+}  // namespace
+
+nlohmann::json case_json(const collision::CollisionCase& c) {
+  const auto body = [](const core::Mesh& m, const collision::Pose& p) {
+    nlohmann::json hull = nlohmann::json::array();
+    for (const auto& v : m.vertices()) hull.push_back(vec(v));
+    const Eigen::Quaterniond q(p.rotation);
+    return nlohmann::json{{"hull", hull}, {"position", vec(p.position)}, {"orientation", {q.w(), q.x(), q.y(), q.z()}}};
+  };
+  return {{"name", c.name}, {"a", body(*c.mesh_a, c.pose_a)}, {"b", body(*c.mesh_b, c.pose_b)}};
+}
+
+nlohmann::json random_corpus(std::uint64_t seed, int count) {
+  const auto cases = collision::build_cases(collision::random_case_specs(seed, count), "random corpus");
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& c : cases) out.push_back(case_json(c));
+  return out;
+}
+
+nlohmann::json collide(const std::vector<collision::CollisionCase>& cases, const CollideOptions& options) {
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t index = 0; index < cases.size(); ++index) {
+    const auto& c = cases[index];
+    const FclShape fa(*c.mesh_a), fb(*c.mesh_b);
+    const BulletShape ba(*c.mesh_a), bb(*c.mesh_b);
+    std::vector<collision::FeatureContact> trad_contacts, cga_contacts;
+    // Each method as a query; the referees' shapes are built once above, like
+    // our meshes, so only the query is timed.
+    const std::vector<std::function<PairContact()>> query{
+        [&] {
+          trad_contacts.clear();
+          return traditional::narrowphase(c.a(), c.b(), collision::Method::report, &trad_contacts);
+        },
+        [&] {
+          cga_contacts.clear();
+          return cga::narrowphase(c.a(), c.b(), collision::Method::report, &cga_contacts);
+        },
+        [&] { return collision::sat_reference(c.a(), c.b()); },
+        [&] { return fcl_collide(fa, c.pose_a, fb, c.pose_b); },
+        [&] { return bullet_collide(ba, c.pose_a, bb, c.pose_b); },
+    };
+    const std::size_t n = query.size();
+    std::vector<PairContact> result(n);
+    std::vector<std::vector<double>> times(n);
+    // A referee that gives no valid answer (Bullet's EPA on some deep overlaps,
+    // compare/referee.hpp) is recorded as an error for that pair, not a crash.
+    std::vector<std::string> error(n);
+    for (int rep = 0; rep < options.repeat; ++rep)
+      for (std::size_t k = 0; k < n; ++k) {  // interleaved, and the order turns each round
+        const std::size_t m = (k + static_cast<std::size_t>(rep)) % n;
+        if (!error[m].empty()) continue;
+        try {
+          const auto t0 = Clock::now();
+          result[m] = query[m]();
+          times[m].push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+        } catch (const Error& e) {
+          error[m] = e.what();
+        }
+      }
+    const double scale = collision::pair_scale(*c.mesh_a, *c.mesh_b);
+    const PairContact& ref = result[2];
+    const bool touching = std::abs(ref.depth) <= collision::kTouchingBand * scale;
+    nlohmann::json entry{{"name", c.name}, {"scale", scale}, {"touching", touching}};
+    std::vector<std::string> disagree;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::string& method = collide_methods()[k];
+      if (!error[k].empty()) {
+        entry[method] = {{"error", error[k]}};
+        if (!touching || k < 2) disagree.push_back(method);
+        continue;
+      }
+      entry[method] = answer(result[k], spread(times[k]).median);
+      if (k != 2 && !touching && result[k].intersect != ref.intersect) disagree.push_back(method);
+    }
+    entry["traditional"]["contacts"] = trad_contacts.size();
+    entry["cga"]["contacts"] = cga_contacts.size();
+    entry["disagree"] = disagree;
+    if (!disagree.empty() && !options.disagreements.empty()) {
+      std::filesystem::create_directories(options.disagreements);
+      std::ostringstream name;
+      name << std::setw(4) << std::setfill('0') << index << "-" << slug(c.name) << ".json";
+      write_file_atomically(options.disagreements / name.str(), nlohmann::json::array({case_json(c)}).dump(1) + "\n");
+    }
+    out.push_back(entry);
+  }
+  return out;
+}
+
+std::string collide_table(const nlohmann::json& entries) {
+  struct Acc {
+    int compared = 0, agree = 0, overlapping = 0, errors = 0;
+    std::vector<double> depth_err, angle, time;
+  };
+  std::map<std::string, Acc> acc;
+  int touching = 0;
+  for (const auto& e : entries) {
+    if (e["touching"].get<bool>()) {
+      ++touching;
+      continue;
+    }
+    const auto& ref = e["sat"];
+    const double scale = e["scale"];
+    for (const auto& m : collide_methods()) {
+      Acc& a = acc[m];
+      const auto& r = e[m];
+      ++a.compared;
+      if (r.contains("error")) {
+        ++a.errors;
+        continue;
+      }
+      a.time.push_back(r["time_s"]);
+      a.agree += r["intersect"] == ref["intersect"];
+      if (!(ref["intersect"].get<bool>() && r["intersect"].get<bool>())) continue;
+      ++a.overlapping;
+      a.depth_err.push_back(std::abs(r["depth"].get<double>() - ref["depth"].get<double>()) / scale);
+      const Eigen::Vector3d n(r["normal"][0], r["normal"][1], r["normal"][2]);
+      const Eigen::Vector3d nr(ref["normal"][0], ref["normal"][1], ref["normal"][2]);
+      a.angle.push_back(std::atan2(n.cross(nr).norm(), n.dot(nr)));
+    }
+  }
+  const double t_trad = spread(acc["traditional"].time).median;
+  std::ostringstream s;
+  s << "| method | pairs | no answer | yes/no agree | depth error / scale, median (max) | normal angle rad, median (max) | "
+       "time per pair, median µs | × traditional |\n|---|---|---|---|---|---|---|---|\n";
+  s << std::setprecision(3);
+  for (const auto& m : collide_methods()) {
+    const Acc& a = acc[m];
+    const Spread d = spread(a.depth_err), g = spread(a.angle), t = spread(a.time);
+    s << "| " << m << " | " << a.compared << " | " << a.errors << " | " << a.agree << " (" << (a.compared ? 100.0 * a.agree / a.compared : 0)
+      << "%) | " << d.median << " (" << d.max << ") | " << g.median << " (" << g.max << ") | " << t.median * 1e6
+      << " | " << (t_trad > 0 ? t.median / t_trad : 0) << " |\n";
+  }
+  s << "\n" << touching << " pair(s) inside the touching band (|reference depth| ≤ 1e-9 × scale) are not counted.\n";
+  return s.str();
+}
+
+}  // namespace gacompare::compare

@@ -1,0 +1,44 @@
+#pragma once
+// `gacompare collide CASES.json...` (issue #6): every pair through the two
+// backends' narrowphases (the report's detector, with the separating-axis fast
+// path for depth and normal), the exact separating-axis reference, FCL and
+// Bullet; one JSON entry per pair, the agreement table, and the disagreements
+// written as replayable case files.
+#include "core/collision_cases.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gacompare::compare {
+
+inline const std::vector<std::string>& collide_methods() {
+  static const std::vector<std::string> m{"traditional", "cga", "sat", "fcl", "bullet"};
+  return m;
+}
+
+struct CollideOptions {
+  int repeat = 5;                     // timed queries per method and pair (interleaved); the median is reported
+  std::filesystem::path disagreements;  // where to write replayable cases; empty: don't
+};
+
+// One entry per case: {"name", "scale", "touching", and per method {"intersect",
+// "depth", "normal", "contact", "feature", "time_s"} (+ "contacts" for the
+// backends: how many feature contacts the report's detector found)}.
+nlohmann::json collide(const std::vector<collision::CollisionCase>& cases, const CollideOptions& options);
+
+// The agreement and timing table (markdown) over collide()'s entries: per
+// method, yes/no agreement with the reference outside the touching band, depth
+// error and normal angle against it on overlapping pairs, median time per pair.
+std::string collide_table(const nlohmann::json& entries);
+
+// A case written back in the input format (hulls of the meshes' vertices, in
+// body coordinates), so `gacompare collide` replays it.
+nlohmann::json case_json(const collision::CollisionCase& c);
+
+// The random corpus as a case file (collision::random_case_specs).
+nlohmann::json random_corpus(std::uint64_t seed, int count);
+
+}  // namespace gacompare::compare

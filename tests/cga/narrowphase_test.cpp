@@ -1,0 +1,22 @@
+// tests/narrowphase_cases.hpp through cga/narrowphase.hpp.
+#include "cga/narrowphase.hpp"
+#include "cga/segment_triangle.hpp"
+
+#include "../narrowphase_cases.hpp"
+
+namespace {
+struct Cga {
+  static auto segment_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                               const Eigen::Vector3d& d, const Eigen::Vector3d& e) {
+    return gacompare::cga::segment_triangle(a, b, c, d, e);
+  }
+  static auto narrowphase(const gacompare::collision::Placed& a, const gacompare::collision::Placed& b,
+                          gacompare::collision::Method m, std::vector<gacompare::collision::FeatureContact>* out) {
+    return gacompare::cga::narrowphase(a, b, m, out);
+  }
+};
+}  // namespace
+
+namespace gacompare::testing {
+INSTANTIATE_TYPED_TEST_SUITE_P(Cga, NarrowphaseCases, Cga);
+}

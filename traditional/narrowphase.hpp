@@ -1,0 +1,61 @@
+#pragma once
+// The narrowphase's view of a placed convex body in the traditional algebra
+// (issue #6, §2.4.3–2.4.4): vertices and face planes as 3-vectors and
+// (normal, offset), a face test by the dot product, edge axes by the cross
+// product, Sunday's segment–triangle. The algorithm over it is written once:
+// core/narrowphase.hpp. Twin: cga/narrowphase.hpp.
+#include "core/narrowphase.hpp"
+#include "traditional/segment_triangle.hpp"
+
+#include <vector>
+
+namespace gacompare::traditional {
+
+using Vec3 = Eigen::Vector3d;
+
+class Body {
+ public:
+  // The body moved into the pair's local frame: x → R x + (p − origin), face
+  // planes n → R n with offsets d + (R n)·(p − origin).
+  Body(const collision::Placed& placed, const Vec3& origin) : mesh_(placed.mesh) {
+    const Eigen::Matrix3d& r = placed.pose.rotation;
+    const Vec3 t = placed.pose.position - origin;
+    vertices_.reserve(mesh_->vertices().size());
+    centre_.setZero();
+    for (const Vec3& x : mesh_->vertices()) {
+      vertices_.push_back(r * x + t);
+      centre_ += vertices_.back();
+    }
+    centre_ /= static_cast<double>(vertices_.size());
+    planes_.reserve(mesh_->planes().size());
+    for (const auto& p : mesh_->planes()) {
+      const Vec3 n = r * p.normal;
+      planes_.push_back({n, p.offset + n.dot(t)});
+    }
+  }
+  const core::Mesh& mesh() const { return *mesh_; }
+  Vec3 vertex(int i) const { return vertices_[i]; }
+  Vec3 normal(int k) const { return planes_[k].normal; }
+  Vec3 centre() const { return centre_; }  // the mean of the vertices: inside a convex body
+  // §2.4.3: n·x − d, > 0 outside.
+  double plane_distance(int k, const Body& other, int j) const { return planes_[k].distance(other.vertices_[j]); }
+  static Vec3 edge_axis(const Vec3& da, const Vec3& db) { return da.cross(db); }
+  static std::optional<collision::SegmentHit> segment_triangle(const Vec3& l0, const Vec3& l1, const Vec3& t0,
+                                                               const Vec3& t1, const Vec3& t2) {
+    return traditional::segment_triangle(l0, l1, t0, t1, t2);
+  }
+
+ private:
+  const core::Mesh* mesh_;
+  std::vector<Vec3> vertices_;
+  std::vector<core::Plane> planes_;
+  Vec3 centre_;
+};
+
+inline collision::PairContact narrowphase(const collision::Placed& a, const collision::Placed& b,
+                                          collision::Method method,
+                                          std::vector<collision::FeatureContact>* contacts = nullptr) {
+  return collision::narrowphase<Body>(a, b, method, contacts);
+}
+
+}  // namespace gacompare::traditional
