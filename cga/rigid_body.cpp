@@ -132,4 +132,59 @@ void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sampl
   s.rotation_drift = rotation_drift(m, y);
 }
 
+// ---- collisions (§2.4–2.5) ----
+
+// The narrowphase takes the rotor's 3×3 matrix: built once per body per query
+// and applied to every vertex (the outermorphism; DESIGN.md "Fair comparison").
+collision::Pose RigidBodies::pose(const Model& m, std::span<const double> y, std::size_t b) {
+  (void)m;
+  const Layout at = layout(b);
+  const Rotor3 r = rotor_at(y, at.rot);
+  return {rotation_matrix(r / std::sqrt(norm2(r))), to_eigen(vec_at(y, at.x))};
+}
+
+// A point carried by the body moves with ṙ = r·Ω (the commutator of eq. 35:
+// d/dt (R r R̃) = ½(r Ω − Ω r) = r⌋Ω for a vector r and a bivector Ω).
+Eigen::Vector3d RigidBodies::velocity_at(const Model& m, std::span<const double> y, std::size_t b,
+                                         const Eigen::Vector3d& p) {
+  const Body& body = m.bodies[b];
+  const Layout at = layout(b);
+  const Rotor3 r = rotor_at(y, at.rot);
+  const Bivector3 omega = sandwich(r, apply(body.inv_inertia, sandwich(reverse(r), biv_at(y, at.l))));
+  const Vector3 arm = vector3(p) - vec_at(y, at.x);
+  return to_eigen(body.inv_mass * vec_at(y, at.p) + (arm | omega));
+}
+
+// Eq. 54's term for one body, derived as eq. 53 with bivectors: the angular
+// impulse j r∧n changes Ω by j I⁻¹(r∧n), which moves the point by j r·I⁻¹(r∧n);
+// its component along n is the term: 1/M + n·(r·I⁻¹(r∧n)). (Eq. 54 prints
+// n∧r inside I⁻¹, the negative: with r·(·) on the left its sign must be r∧n
+// for the term to be positive, as the tests against eq. 53 check.)
+double RigidBodies::inverse_effective_mass(const Model& m, std::span<const double> y, std::size_t b,
+                                           const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
+  const Body& body = m.bodies[b];
+  if (body.inv_mass == 0) return 0;
+  const Layout at = layout(b);
+  const Rotor3 r = rotor_at(y, at.rot);
+  const Vector3 arm = vector3(p) - vec_at(y, at.x), nn = vector3(n);
+  const Bivector3 d_omega = sandwich(r, apply(body.inv_inertia, sandwich(reverse(r), arm ^ nn)));
+  return body.inv_mass + scalar_product(nn, arm | d_omega);
+}
+
+// P += J, L += r ∧ J.
+void RigidBodies::apply_impulse(const Model& m, std::span<double> y, std::size_t b, const Eigen::Vector3d& p,
+                                const Eigen::Vector3d& impulse) {
+  if (m.bodies[b].inv_mass == 0) return;
+  const Layout at = layout(b);
+  const Vector3 j = vector3(impulse);
+  put(y, at.p, vec_at(y, at.p) + j);
+  put(y, at.l, biv_at(y, at.l) + ((vector3(p) - vec_at(y, at.x)) ^ j));
+}
+
+void RigidBodies::translate(const Model& m, std::span<double> y, std::size_t b, const Eigen::Vector3d& d) {
+  (void)m;
+  const Layout at = layout(b);
+  put(y, at.x, vec_at(y, at.x) + vector3(d));
+}
+
 }  // namespace gacompare::cga

@@ -12,6 +12,7 @@
 // out). Rotating L into the body and Ω back costs two sandwiches on 3-component
 // bivectors, where the matrix backend forms R I⁻¹ Rᵀ. With R = exp(−Bθ/2) and
 // x' = R x R̃, a body spinning at ω about axis a has Ω = a I (= bivector_of_axial(ω a)).
+#include "core/collision.hpp"
 #include "core/rigid_body.hpp"
 #include "core/run.hpp"
 #include "core/scene.hpp"
@@ -51,6 +52,21 @@ struct RigidBodies {
   static void observe(const Model& m, std::span<const double> y, core::Sample& s);
   // max over bodies of |R R̃ − 1|: how far the stored rotor has drifted from a rotor.
   static double rotation_drift(const Model& m, std::span<const double> y);
+
+  // --- collisions (§2.4–2.5); called only when the scene lists the effect ---
+  // The pose the narrowphase places the mesh with (centre of mass, rotation).
+  static collision::Pose pose(const Model& m, std::span<const double> y, std::size_t b);
+  // Velocity of the world point p carried by body b (eq. 47).
+  static Eigen::Vector3d velocity_at(const Model& m, std::span<const double> y, std::size_t b, const Eigen::Vector3d& p);
+  // Body b's term of the impulse denominator for an impulse along n at p, so
+  // that n·Δṗ = j · inverse_effective_mass (eq. 53 / eq. 54 per backend).
+  static double inverse_effective_mass(const Model& m, std::span<const double> y, std::size_t b,
+                                       const Eigen::Vector3d& p, const Eigen::Vector3d& n);
+  // An impulse J applied at world point p (eq. 48–49): P += J, L += r × J / r ∧ J.
+  static void apply_impulse(const Model& m, std::span<double> y, std::size_t b, const Eigen::Vector3d& p,
+                            const Eigen::Vector3d& impulse);
+  // Moves body b's centre of mass by d (positional correction of resting contact).
+  static void translate(const Model& m, std::span<double> y, std::size_t b, const Eigen::Vector3d& d);
 };
 
 }  // namespace gacompare::cga

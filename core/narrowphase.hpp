@@ -12,7 +12,13 @@
 //     The minimum depth and its normal, which the report does not give, come
 //     from the separating-axis fast path (core/separating_axis.hpp).
 //   sat: the separating-axis fast path alone (yes/no, depth, normal, no
-//     feature contacts).
+//     feature contacts), stopping at the first separating axis.
+//   sat_then_report: what the simulation runs. The fast path first, stopping
+//     at a separating axis; the report's detector only for the pairs it finds
+//     within the touching band of contact (most broadphase pairs are apart,
+//     and the detector costs edges × triangles). `gacompare collide` and the
+//     tests run `report` so that the detector's yes/no is checked on every
+//     pair, apart ones included.
 // The report's features find every intersection of two closed convex
 // polyhedra: if no vertex of either is inside the other, their boundaries
 // still cross, and where two boundaries cross an edge of one passes through a
@@ -27,7 +33,7 @@
 
 namespace gacompare::collision {
 
-enum class Method : std::uint8_t { report, sat };
+enum class Method : std::uint8_t { report, sat, sat_then_report };
 
 namespace detail {
 
@@ -64,8 +70,13 @@ void vertices_inside(const Body& f, const Body& o, bool f_is_a, std::vector<Feat
   }
 }
 
-// §2.4.4: edges of `s` through triangles of `t`. The crossing found is an edge
-// of s through a face of t, but the contact is an edge–edge one (fig. 10): the
+// §2.4.4: edges of `s` through triangles of `t`, "not due to a vertex entering
+// the other body" (fig. 7): an edge with an end inside t is already a
+// vertex–face contact, and pairing it with the nearest edge of the face it
+// crosses would invent an edge–edge contact with a wrong normal (a cube's edge
+// dipping into a large slab is nowhere near the slab's edges). For the rest,
+// the crossing found is an edge of s through a face of t, but the contact is
+// an edge–edge one (fig. 10): the
 // edge of that face nearest the crossing point is taken as the one crossed
 // (the report reflects the point in each side's line and compares; the
 // distance to the line is the same number) and the normal is the two edges'
@@ -81,6 +92,7 @@ void edges_through_faces(const Body& a, const Body& b, const Body& s, const Body
   const auto& tplane = t.mesh().triangle_plane();
   const auto& tedge_planes = t.mesh().edge_planes();
   for (int i = 0; i < static_cast<int>(se.size()); ++i) {
+    if (least_deep_face(t, s, se[i][0]).first <= 0 || least_deep_face(t, s, se[i][1]).first <= 0) continue;
     const Vec3 s0 = s.vertex(se[i][0]), s1 = s.vertex(se[i][1]);
     for (int k = 0; k < static_cast<int>(tris.size()); ++k) {
       const auto hit = Body::segment_triangle(s0, s1, t.vertex(tris[k][0]), t.vertex(tris[k][1]), t.vertex(tris[k][2]));
@@ -128,9 +140,10 @@ template <class Body>
 PairContact narrowphase(const Placed& a, const Placed& b, Method method, std::vector<FeatureContact>* contacts = nullptr) {
   const Vec3 origin = local_origin(a, b);
   const Body A(a, origin), B(b, origin);
-  PairContact result = separating_axis(A, B);
+  PairContact result = separating_axis(A, B, method != Method::report);
   result.contact += origin;
-  if (method == Method::report) {
+  if (method == Method::sat_then_report && result.depth < -kTouchingBand * pair_scale(*a.mesh, *b.mesh)) return result;
+  if (method != Method::sat) {
     std::vector<FeatureContact> local;
     std::vector<FeatureContact>& found = contacts ? *contacts : local;
     const std::size_t first = found.size();

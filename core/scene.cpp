@@ -495,9 +495,16 @@ class Loader {
       });
       return a;
     }
-    static constexpr Keys<3> keys = {"type", "restitution", "penetration_tolerance"};
+    static constexpr Keys<5> keys = {"type", "restitution", "penetration_tolerance", "step", "time_of_impact"};
     Obj o(v, keys);
     Collisions c;
+    if (auto x = o.opt("step")) c.step = number(*x, Range::positive);
+    if (auto x = o.opt("time_of_impact")) {
+      const std::string m = str(*x);
+      if (m == "bisection") c.time_of_impact = TimeOfImpact::bisection;
+      else if (m == "illinois") c.time_of_impact = TimeOfImpact::illinois;
+      else x->expected("\"bisection\" or \"illinois\"");
+    }
     if (auto x = o.opt("restitution")) c.restitution = number(*x, Range::unit);
     if (auto x = o.opt("penetration_tolerance")) c.penetration_tolerance = number(*x, Range::positive);
     return c;
@@ -516,9 +523,9 @@ class Loader {
   }
 
   Body body(const Val& v) {
-    static constexpr Keys<9> keys = {"name",     "shape",       "mass",     "density",
-                                     "position", "orientation", "velocity", "angular_velocity",
-                                     "static"};
+    static constexpr Keys<10> keys = {"name",     "shape",       "mass",     "density",
+                                      "position", "orientation", "velocity", "angular_velocity",
+                                      "static",   "restitution"};
     Obj o(v, keys);
     Body b;
     b.name = claim(o.req("name"), "body");
@@ -534,6 +541,7 @@ class Loader {
     if (auto x = o.opt("velocity")) b.velocity = vec3(*x);
     if (auto x = o.opt("angular_velocity")) b.angular_velocity = vec3(*x);
     if (auto x = o.opt("static")) b.is_static = boolean(*x);
+    if (auto x = o.opt("restitution")) b.restitution = number(*x, Range::unit);
     return b;
   }
 

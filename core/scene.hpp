@@ -35,7 +35,23 @@ struct QuadraticDrag { double k = 0; double k_angular = 0; };  // F = -k |v| v; 
 // report's exact 1/r² law, singular where two particles meet.
 struct AttractionBetweenParticles { double C = 0; double softening = 0; };  // towards each other
 struct AttractionToPoint { Vec3 point{0, 0, 0}; double D = 0; double softening = 0; };  // F = D m / r², towards point
-struct Collisions { double restitution = 0.5; double penetration_tolerance = 1e-4; };
+// Collision detection and response between rigid bodies (issues #6, #7, §2.4–2.5).
+//   restitution: ε of eq. 53 for every pair, unless a body sets its own; a pair
+//     uses the smaller of its two bodies' values.
+//   penetration_tolerance (m): §2.4.3's tolerance; a step that ends deeper is
+//     retreated (time of impact), shallower contacts get impulses.
+//   step (s): the interval at which contacts are checked (the solver takes its
+//     own steps inside it); halved automatically where a body could move more
+//     than half its inradius in one interval (no tunnelling).
+//   time_of_impact: "bisection" (§2.5.1, the report's) or "illinois" (a
+//     bracketing root finder on the separating-axis depth, §4.3's future work).
+enum class TimeOfImpact { bisection, illinois };
+struct Collisions {
+  double restitution = 0.5;
+  double penetration_tolerance = 1e-4;
+  double step = 1e-3;
+  TimeOfImpact time_of_impact = TimeOfImpact::bisection;
+};
 // Forces applied at points of bodies (§2.3.1: L̇ = τ): each pushes body `body` at
 // `point` (body coordinates, from the centre of mass) with `force` (world, N)
 // while from <= t < until, producing the torque (R p) × F — in cga the bivector
@@ -106,6 +122,7 @@ struct Body {
   Vec3 velocity{0, 0, 0};
   Vec3 angular_velocity{0, 0, 0};           // world frame, rad/s
   bool is_static = false;
+  std::optional<double> restitution;        // overrides the collisions effect's for this body
 };
 
 // --- generators: expanded into particles and constraints by the dynamics issue --------

@@ -3,27 +3,119 @@
 // algebra, core/particle_system.hpp) followed by rigid bodies (in the backend's own
 // algebra: traditional/rigid_body.hpp, cga/rigid_body.hpp). This composes the two
 // into what the simulator needs (core::Backend); each backend is this template
-// with its algebra and its name.
+// with its algebra and its name. Collide supplies the backend's narrowphase view
+// of a body (Collide::Body) and its bounding-sphere algebra (Collide::Spheres);
+// they are used only when the scene lists the collisions effect.
+#include "core/collisions.hpp"
 #include "core/particle_system.hpp"
 #include "core/rigid_body.hpp"
 
+#include <optional>
+
 namespace gacompare::core {
 
-template <class ParticleOps, class Bodies>
+template <class ParticleOps, class Bodies, class Collide>
 struct Simulation {
   using Particles = ParticleSystem<ParticleOps>;
+  using Contacts = Collider<Bodies, typename Collide::Body, typename Collide::Spheres>;
   struct Model {
     typename Particles::Model particles;
     typename Bodies::Model bodies;
     std::vector<BodyProperties> props;
     std::size_t offset = 0;  // where the bodies' state starts
+    std::optional<Contacts> collisions;  // only when the scene lists the effect
+    double bounding_seconds = 0;         // building the bounding spheres, once
   };
 
   static Model build(const Scene& scene) {
-    Model m{Particles::build(scene), {}, body_properties(scene), 0};
+    Model m{Particles::build(scene), {}, body_properties(scene), 0, std::nullopt, 0};
     m.bodies = Bodies::build(scene, m.props);
     m.offset = Particles::state_size(m.particles);
+    if (scene.find_effect<Collisions>()) {
+      Profile once;
+      m.collisions = Contacts::build(scene, m.bodies, once);
+      m.bounding_seconds = once[Stage::bounding_volumes].seconds;
+    }
     return m;
+  }
+
+  // Integrates from t to t_end: straight through without collisions, else in
+  // collision steps with time of impact and response (core/collisions.hpp).
+  template <class F, class G>
+  static void advance(const Model& m, OdeSolver& solver, F& f, double& t, double t_end, std::vector<double>& y,
+                      Profile& profile, G& after) {
+    if (!m.collisions) return solver.advance(f, t, t_end, y, profile, after);
+    const Contacts& c = *m.collisions;
+    const auto bodies = [&](std::vector<double>& yy) { return std::span<double>(yy).subspan(m.offset); };
+    const double tol = c.setup.settings.penetration_tolerance;
+    std::vector<double> y0, ym;  // the last accepted state (§2.5.1's double buffer) and a trial
+    while (t < t_end) {
+      double h = std::min(c.setup.settings.step, t_end - t);
+      const double limited = c.step_limit(m.bodies, bodies(y), h);
+      if (limited < h) h = limited, ++c.counters.shortened_steps;
+      const double t0 = t, t1 = t_end - (t0 + h) <= 1e-9 * h ? t_end : t0 + h;
+      y0 = y;
+      solver.advance(f, t, t1, y, profile, after);
+      ++c.counters.steps;
+      Detection d = c.detect(m.bodies, bodies(y), profile);
+      if (d.max_depth > tol) {
+        ScopedStage timed(profile, Stage::time_of_impact);
+        Profile inner;  // the search's integration and narrowphase count as time of impact
+        std::vector<std::pair<int, int>> pairs;
+        for (const auto& hit : d.hits) pairs.emplace_back(hit.a, hit.b);
+        const auto at = [&](double tm) {
+          ym = y0;
+          double tt = t0;
+          solver.advance(f, tt, tm, ym, inner, after);
+          ++c.counters.impact_evaluations;
+          return c.depth_of(m.bodies, bodies(ym), pairs, inner);
+        };
+        ++c.counters.impact_searches;
+        double lo = t0, hi = t1, g_lo = c.depth_of(m.bodies, bodies(y0), pairs, inner), g_hi = d.max_depth;
+        const double aim = 0.5 * (std::max(g_lo, 0.0) + tol);  // Illinois: the depth it steers to
+        int side = 0;  // Illinois: which end was kept last (−1 lo, +1 hi)
+        double f_lo = g_lo - aim, f_hi = g_hi - aim;
+        bool found = false;
+        double t_star = t1;
+        // Already deeper than the tolerance at t0 (a correction pushed one body
+        // into a third): no earlier time can be in the band; don't search.
+        const bool searchable = g_lo <= tol;
+        for (int it = 0; searchable && it < kMaxImpactIterations && !found; ++it) {
+          ++c.counters.impact_iterations;
+          double tm = 0.5 * (lo + hi);
+          if (c.setup.settings.time_of_impact == TimeOfImpact::illinois) {
+            const double secant = hi - f_hi * (hi - lo) / (f_hi - f_lo);
+            if (secant > lo && secant < hi) tm = secant;
+          }
+          const double gm = at(tm);
+          if (gm > tol) {
+            hi = tm, g_hi = gm, f_hi = gm - aim;
+            if (side == +1) f_lo *= 0.5;  // Illinois: the same end kept twice
+            side = +1;
+          } else if (gm > 0) {
+            found = true;
+            t_star = tm;
+          } else {
+            lo = tm, g_lo = gm, f_lo = gm - aim;
+            if (side == -1) f_hi *= 0.5;
+            side = -1;
+          }
+        }
+        // No time in the band, or one so close to t0 that the search would make
+        // no progress (Zeno): take the whole step; response and correction
+        // resolve the depth. Progress is then always at least one step.
+        if (found && t_star - t0 <= 1e-6 * (t1 - t0)) found = false;
+        if (!found) {
+          ++c.counters.unresolved_searches;
+          t_star = t1;
+          at(t1);
+        }
+        y.swap(ym);
+        t = t_star;
+        d = c.detect(m.bodies, bodies(y), inner);
+      }
+      if (!d.hits.empty()) c.respond(m.bodies, bodies(y), d, profile);
+    }
   }
   static std::size_t state_size(const Model& m) { return m.offset + Bodies::state_size(m.bodies); }
   static void initial_state(const Model& m, std::span<double> y) {
@@ -58,8 +150,16 @@ struct Simulation {
                                   m.bodies.names, "body");
     return bad;
   }
-  static std::map<std::string, std::uint64_t> counters(const Model& m) { return Particles::counters(m.particles); }
-  static std::map<std::string, double> metrics(const Model& m) { return Particles::metrics(m.particles); }
+  static std::map<std::string, std::uint64_t> counters(const Model& m) {
+    auto out = Particles::counters(m.particles);
+    if (m.collisions) m.collisions->counters.add_to(out);
+    return out;
+  }
+  static std::map<std::string, double> metrics(const Model& m) {
+    auto out = Particles::metrics(m.particles);
+    if (m.collisions) out["bounding_volumes_seconds"] = m.bounding_seconds;
+    return out;
+  }
 };
 
 }  // namespace gacompare::core

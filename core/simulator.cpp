@@ -13,12 +13,8 @@ std::string first_nonfinite(std::span<const double> y, std::size_t stride, const
 }
 
 void check_implemented(const Scene& scene) {
-  auto refuse = [&](const std::string& what, int issue) {
-    throw input_error(scene.file.string() + ": " + what + " cannot be simulated yet (issue #" + std::to_string(issue) + ")");
-  };
   if (!scene.generators.empty())
     throw std::logic_error("simulate() needs a scene whose generators are expanded (expand_generators)");
-  if (scene.find_effect<Collisions>()) refuse("the 'collisions' effect", 6);
   if (!scene.bodies.empty() &&
       (scene.find_effect<AttractionBetweenParticles>() || scene.find_effect<AttractionToPoint>()))
     throw input_error(scene.file.string() +
@@ -29,6 +25,9 @@ void check_implemented(const Scene& scene) {
       for (const auto& b : scene.bodies)
         if (b.name == f.body && b.is_static)
           throw input_error(scene.file.string() + ": applied force on static body '" + b.name + "', which cannot move");
+  if (scene.find_effect<Collisions>() && scene.bodies.size() < 2)
+    throw input_error(scene.file.string() + ": the collisions effect acts between rigid bodies (§2.4), and the scene has " +
+                      std::to_string(scene.bodies.size()) + "; particles do not collide");
   if (scene.particles.empty() && scene.bodies.empty())
     throw input_error(scene.file.string() + ": the scene has nothing to simulate (no particles, no bodies)");
 }

@@ -39,6 +39,8 @@ concept Backend = requires(const Scene& scene, const typename B::Model& m, doubl
   { B::observe(m, y, sample) };
   // "" when every component is finite, else what holds the bad value: "particle 'bob'".
   { B::first_nonfinite(m, y) } -> std::same_as<std::string>;
+  // B::advance(model, solver, f, t, t_end, y, profile, after): integrates to
+  // t_end (with collision handling when the model has it; core/simulation.hpp).
 };
 
 // "" when every component of y is finite; else "<what> '<name>'" for the first
@@ -86,7 +88,7 @@ Run simulate(const Scene& scene) {
   record(t);
   for (std::size_t k = 1; k < times.size(); ++k) {
     try {
-      solver.advance(f, t, times[k], y, run.profile, after);
+      B::advance(model, solver, f, t, times[k], y, run.profile, after);
     } catch (const Error& e) {
       run.error = std::string(e.what());
       break;

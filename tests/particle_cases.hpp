@@ -97,7 +97,8 @@ TYPED_TEST_P(ParticleCases, NonFiniteStateStopsTheRunByName) {
   EXPECT_EQ(run.samples.size(), 1u);  // the t = 0 sample survives
 }
 
-TYPED_TEST_P(ParticleCases, WhatCannotBeSimulatedYetIsRefused) {
+// The collisions effect acts between rigid bodies; on particles alone it is refused.
+TYPED_TEST_P(ParticleCases, CollisionsWithoutBodiesAreRefused) {
   const auto scene = scene_from(R"({"name": "c", "duration": 1.0, "output": {"every": 0.5},
     "solver": {"method": "rk4"},
     "particles": [{"name": "a", "mass": 1.0, "position": [1, 0, 0]}],
@@ -107,7 +108,7 @@ TYPED_TEST_P(ParticleCases, WhatCannotBeSimulatedYetIsRefused) {
     FAIL() << "expected an error";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::input);
-    EXPECT_NE(std::string(e.what()).find("issue #6"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("particles do not collide"), std::string::npos) << e.what();
   }
 }
 
@@ -131,7 +132,7 @@ TYPED_TEST_P(ParticleCases, InitialConstraintViolationIsRefused) {
 
 REGISTER_TYPED_TEST_SUITE_P(ParticleCases, ProjectileWithLinearDragMatchesClosedForm,
                             FallWithQuadraticDragMatchesClosedForm, GravityConservesEnergyAndPinnedParticlesStay,
-                            NonFiniteStateStopsTheRunByName, WhatCannotBeSimulatedYetIsRefused,
+                            NonFiniteStateStopsTheRunByName, CollisionsWithoutBodiesAreRefused,
                             InitialConstraintViolationIsRefused);
 
 }  // namespace gacompare::testing

@@ -3,13 +3,21 @@
 // vector algebra for particles and its rigid bodies, composed by core::Simulation.
 #include "core/simulation.hpp"
 #include "traditional/particle.hpp"
+#include "traditional/bounding_volume.hpp"
+#include "traditional/narrowphase.hpp"
 #include "traditional/rigid_body.hpp"
 
 #include <string_view>
 
 namespace gacompare::traditional {
 
-struct Backend : core::Simulation<VectorOps, RigidBodies> {
+// The collision algebra: the narrowphase view of a body and the bounding spheres.
+struct Collide {
+  using Body = traditional::Body;
+  using Spheres = SphereOps;
+};
+
+struct Backend : core::Simulation<VectorOps, RigidBodies, Collide> {
   static constexpr std::string_view name = "traditional";
 };
 

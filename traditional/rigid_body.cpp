@@ -168,4 +168,44 @@ void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sampl
   s.rotation_drift = rotation_drift(m, y);
 }
 
+// ---- collisions (§2.4–2.5) ----
+
+collision::Pose RigidBodies::pose(const Model& m, std::span<const double> y, std::size_t b) {
+  const Layout at = layout(m, b);
+  return {rotation(m, y, at), vec_at(y, at.x)};
+}
+
+// ω = R I⁻¹ Rᵀ L (eq. 31 as corrected above); ṗ = v + ω × r (eq. 47).
+Vec RigidBodies::velocity_at(const Model& m, std::span<const double> y, std::size_t b, const Vec& p) {
+  const Body& body = m.bodies[b];
+  const Layout at = layout(m, b);
+  const Mat r = rotation(m, y, at);
+  const Vec w = r * (body.inv_inertia * (r.transpose() * vec_at(y, at.l)));
+  return body.inv_mass * vec_at(y, at.p) + w.cross(p - vec_at(y, at.x));
+}
+
+// Eq. 53's term for one body: 1/M + n·((I⁻¹(r × n)) × r).
+double RigidBodies::inverse_effective_mass(const Model& m, std::span<const double> y, std::size_t b, const Vec& p,
+                                           const Vec& n) {
+  const Body& body = m.bodies[b];
+  if (body.inv_mass == 0) return 0;
+  const Layout at = layout(m, b);
+  const Mat r = rotation(m, y, at);
+  const Vec arm = p - vec_at(y, at.x);
+  return body.inv_mass + n.dot((r * (body.inv_inertia * (r.transpose() * arm.cross(n)))).cross(arm));
+}
+
+// Eq. 48–49 on the stored momenta: P += J, L += r × J.
+void RigidBodies::apply_impulse(const Model& m, std::span<double> y, std::size_t b, const Vec& p, const Vec& impulse) {
+  if (m.bodies[b].inv_mass == 0) return;
+  const Layout at = layout(m, b);
+  put(y, at.p, Vec(vec_at(y, at.p) + impulse));
+  put(y, at.l, Vec(vec_at(y, at.l) + (p - vec_at(y, at.x)).cross(impulse)));
+}
+
+void RigidBodies::translate(const Model& m, std::span<double> y, std::size_t b, const Vec& d) {
+  const Layout at = layout(m, b);
+  put(y, at.x, Vec(vec_at(y, at.x) + d));
+}
+
 }  // namespace gacompare::traditional

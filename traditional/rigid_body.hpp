@@ -11,6 +11,7 @@
 // The report's eq. 31 writes I(t) = R I_body: that maps body to world on one side
 // only. The world tensor is a similarity transform, R I_body Rᵀ (its inverse
 // R I_body⁻¹ Rᵀ); the test against the free symmetric top's precession checks it.
+#include "core/collision.hpp"
 #include "core/rigid_body.hpp"
 #include "core/run.hpp"
 #include "core/scene.hpp"
@@ -52,6 +53,21 @@ struct RigidBodies {
   // max over bodies of ‖RᵀR − I‖ (Frobenius) or |q q* − 1|: how far the stored
   // rotation has drifted from a rotation.
   static double rotation_drift(const Model& m, std::span<const double> y);
+
+  // --- collisions (§2.4–2.5); called only when the scene lists the effect ---
+  // The pose the narrowphase places the mesh with (centre of mass, rotation).
+  static collision::Pose pose(const Model& m, std::span<const double> y, std::size_t b);
+  // Velocity of the world point p carried by body b (eq. 47).
+  static Eigen::Vector3d velocity_at(const Model& m, std::span<const double> y, std::size_t b, const Eigen::Vector3d& p);
+  // Body b's term of the impulse denominator for an impulse along n at p, so
+  // that n·Δṗ = j · inverse_effective_mass (eq. 53 / eq. 54 per backend).
+  static double inverse_effective_mass(const Model& m, std::span<const double> y, std::size_t b,
+                                       const Eigen::Vector3d& p, const Eigen::Vector3d& n);
+  // An impulse J applied at world point p (eq. 48–49): P += J, L += r × J / r ∧ J.
+  static void apply_impulse(const Model& m, std::span<double> y, std::size_t b, const Eigen::Vector3d& p,
+                            const Eigen::Vector3d& impulse);
+  // Moves body b's centre of mass by d (positional correction of resting contact).
+  static void translate(const Model& m, std::span<double> y, std::size_t b, const Eigen::Vector3d& d);
 };
 
 }  // namespace gacompare::traditional

@@ -1,0 +1,107 @@
+#pragma once
+// Bounding spheres, conformal algebra (issue #6, §2.4.1): the SphereOps policy
+// that core/bounding_volume.hpp (exhaustive search, Welzl) and
+// core/broadphase.hpp (sort and sweep) run on. A sphere is the dual sphere
+// S = C − ½ρ²n (§2.4.1 after [7]), a Cl(4,1) vector (5 numbers), kept
+// normalised to S·n = −1 by every constructor here. Twin:
+// traditional/bounding_volume.hpp, with the same names in the same order: put
+// them side by side and only the algebra differs.
+#include "cga/geometry/inside.hpp"
+#include "cga/geometry/meet.hpp"
+#include "core/bounding_volume.hpp"
+
+#include <cmath>
+#include <optional>
+
+namespace gacompare::cga {
+
+struct SphereOps {
+  using Sphere = DualSphere;  // the vector S, not cga::Sphere (the direct 4-blade)
+  using Point = ConformalPoint;
+  static constexpr const char* name = "cga";
+
+  static Point point(const Vec3& x) { return up(x); }
+  static Sphere sphere(const Vec3& centre, double radius) { return cga::sphere(centre, radius); }
+
+  // §2.4.1 fig. 6a, from the point pair P = A ∧ B. The report forms the centre
+  // C and radius first and then M* = C − ½ρ²n; Table 1 would find the centre by
+  // reflecting n in the pair, P n P, which is quadratic in P (weight ∝ (A·B)²).
+  // Linear instead: contracting P with its carrier direction n⌋P = A − B gives
+  // P⌊(n⌋P) = (A·B)(A + B), i.e. the dual sphere ½(A + B) centred on the pair's
+  // midpoint, but with S² = ½A·B = −¼|a − b|²: imaginary (an even-grade round
+  // and its dual sphere differ in the sign of ρ²). Adding (A·B)n flips ρ² to
+  // +¼|a − b|²:
+  //   S = ½(A + B + (A·B) n),   S·A = S·B = 0,   S·n = −1 (A, B from up()).
+  // One inner product and two additions; no division, no reflection.
+  static Sphere sphere_2(const Point& a, const Point& b) { return (a + b + n_inf() * scalar_product(a, b)) * 0.5; }
+
+  // §2.4.1 fig. 6b, from the circle K = A ∧ B ∧ C. The report extracts the
+  // centre by C = K n K and the radius, then builds C − ½ρ²n; the sandwich has
+  // condition 1/sin² near collinear (entities.hpp, round_centre). Here the dual
+  // circle contracted with its carrier plane π = n⌋K* is already the wanted
+  // dual sphere: K*⌊π = π²σ − (σ·π)π (σ any sphere through the circle) passes
+  // through the circle and is centred in its plane (the construction
+  // cga::circumcircle reads its centre from), so no centre, radius or up() is
+  // formed at all; only the weight is divided out. Collinear or coincident
+  // points: the twin's predicate, |(b−a)×(c−a)| ≤ kSinTol |b−a||c−a|, read off π.
+  static std::optional<Sphere> sphere_3(const Point& a, const Point& b, const Point& c) {
+    const Bivector5 dual_circle = !((a ^ b) ^ c);
+    const DualPlane p = n_inf() | dual_circle;
+    const double w2 = p.c[0] * p.c[0] + p.c[1] * p.c[1] + p.c[2] * p.c[2];
+    const double uv = 4 * scalar_product(a, b) * scalar_product(a, c);  // |b−a|² |c−a|²
+    if (!(w2 > kSinTol * kSinTol * uv)) return std::nullopt;
+    const DualSphere s = widen<Vector5::blades>(rc(dual_circle, p));
+    const double w = detail::weight(s);
+    if (!(w != 0 && std::isfinite(w))) return std::nullopt;
+    return s / w;
+  }
+
+  // §2.4.1 fig. 6c: "simply a matter of forming a 4-blade directly from the
+  // points", dualised and normalised (cga::dual_sphere_through, with the
+  // orientation fix of fig. 14, inside.hpp).
+  static std::optional<Sphere> sphere_4(const Point& a, const Point& b, const Point& c, const Point& d) {
+    return dual_sphere_through(a, b, c, d);
+  }
+
+  // Inside or on, by the report's sign convention (inside.hpp): side(S, X) =
+  // X·S/(S·n) = ½(|x − c|² − ρ²) ≤ tol, for a sphere of either orientation.
+  static bool contains(const Sphere& s, const Point& x, double tol) { return side(s, x) <= tol; }
+
+  // §2.4.1: "intersections between spheres are evaluated by finding the Meet
+  // (see 1.6) of the two spheres, here denoted C. An intersection exists if
+  // C² ≥ 0." The meet of two dual spheres is the dual circle B = S1 ∧ S2
+  // (meet.hpp); the direct C = B* has C² = −B² (I² = −1 in Cl(4,1)), and
+  // −B²/(S1² S2²) = (r d/ρ1ρ2)² = sin² of the angle between the surfaces
+  // (meet.hpp). So C² ≥ 0 ⟺ B² ≤ 0: the surfaces cross (or touch, B² = 0),
+  // exactly the twin's |ρ1 − ρ2| ≤ d ≤ ρ1 + ρ2.
+  // What the report's rule misses: B² > 0 both for spheres apart (d > ρ1 + ρ2)
+  // and for one inside the other (d < |ρ1 − ρ2|), and nested bounding spheres
+  // DO overlap. One inner product tells them apart: S1·S2 = ½(ρ1² + ρ2² − d²)
+  // for normalised spheres, negative when apart ((ρ1 + ρ2)² < d²) and positive
+  // when nested (d² < (ρ1 − ρ2)²); the weights make it independent of scale and
+  // orientation.
+  // Both signs are computed before they are combined: no branch on the data.
+  static bool overlap(const Sphere& s1, const Sphere& s2) {
+    const Bivector5 c = meet(s1, s2);
+    const bool surfaces_meet = scalar_product(c, c) <= 0;  // C² ≥ 0
+    const bool nested = scalar_product(s1, s2) * detail::weight(s1) * detail::weight(s2) > 0;
+    return surfaces_meet || nested;
+  }
+
+  static Vec3 centre(const Sphere& s) { return cga::centre(s); }
+  static double radius(const Sphere& s) { return cga::radius(s); }
+};
+
+// The same predicate as SphereOps::overlap without forming the meet: for
+// vectors (S1∧S2)² = (S1·S2)² − S1² S2² (Lagrange), so "C² ≥ 0 or nested" is
+// S1·S2 ≥ 0 (nested, or crossing with d² ≤ ρ1² + ρ2²) or (S1·S2)² ≤ S1² S2².
+// Three 5-term inner products instead of the 10-component bivector and its
+// square; timed beside the meet in bench/bounding_volume_bench.cpp. For spheres
+// normalised to S·n = −1 (all of SphereOps's).
+inline bool overlap_by_inner_products(const DualSphere& s1, const DualSphere& s2) {
+  const double s12 = scalar_product(s1, s2);
+  const bool near = s12 * s12 <= scalar_product(s1, s1) * scalar_product(s2, s2);
+  return s12 >= 0 || near;
+}
+
+}  // namespace gacompare::cga

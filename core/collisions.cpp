@@ -1,0 +1,50 @@
+#include "core/collisions.hpp"
+
+#include "core/mass_properties.hpp"
+
+#include <algorithm>
+
+namespace gacompare::core {
+
+void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const {
+  out["collision_steps"] = steps;
+  out["collision_steps_shortened"] = shortened_steps;
+  out["broadphase_candidates"] = broadphase_candidates;
+  out["narrowphase_pairs"] = narrowphase_pairs;
+  out["impact_searches"] = impact_searches;
+  out["impact_iterations"] = impact_iterations;
+  out["impact_state_evaluations"] = impact_evaluations;
+  out["impact_searches_unresolved"] = unresolved_searches;
+  out["contacts"] = contacts;
+  out["resting_contacts"] = resting_contacts;
+  out["impulses"] = impulses;
+  out["response_sweeps"] = sweeps;
+  out["positional_corrections"] = corrections;
+}
+
+CollisionSetup collision_setup(const Scene& scene) {
+  CollisionSetup s;
+  s.settings = *scene.find_effect<Collisions>();
+  if (const auto* g = scene.find_effect<Gravity>()) s.gravity = g->g.norm();
+  s.resting_speed = std::sqrt(2 * s.gravity * s.settings.penetration_tolerance) + 2 * s.gravity * s.settings.step;
+  s.min_inradius = INFINITY;
+  for (const auto& body : scene.bodies) {
+    Mesh mesh = mesh_for(body.shape);
+    const Vec3 com = mass_properties(mesh, 1.0).centre_of_mass;
+    mesh = mesh.transformed(Eigen::Matrix3d::Identity(), -com);
+    const Convexity c = convexity(mesh);
+    if (!c.convex)
+      throw input_error("body '" + body.name + "': the collisions effect needs convex bodies (§2.4.2): " + c.reason);
+    double inradius = INFINITY;
+    for (const auto& p : mesh.planes()) inradius = std::min(inradius, p.offset);
+    s.names.push_back(body.name);
+    s.meshes.push_back(std::make_shared<const Mesh>(std::move(mesh)));
+    s.inradius.push_back(inradius);
+    s.min_inradius = std::min(s.min_inradius, inradius);
+    s.restitution.push_back(body.restitution ? *body.restitution : s.settings.restitution);
+    s.is_static.push_back(body.is_static);
+  }
+  return s;
+}
+
+}  // namespace gacompare::core

@@ -1,0 +1,213 @@
+#pragma once
+// Collision response cases of issue #7 (§2.5) run through a backend on the
+// bundled scenes (data/scenes), checked against analytic answers: bounce
+// heights falling by ε², rest, conservation across an elastic impact, an
+// edge–edge impulse along the edges' common normal, no tunnelling among 27
+// bodies in a box, the scene rejected when bodies start overlapping.
+// Instantiated by tests/{traditional,cga}/response_test.cpp.
+#include "core/simulator.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gacompare::testing {
+
+inline core::Scene bundled(const std::string& name) {
+  return core::load_scene(std::filesystem::path(GACOMPARE_DATA_DIR) / "scenes" / (name + ".json"));
+}
+inline const core::BodySample& body(const core::Sample& s, std::size_t b) { return s.bodies[b]; }
+
+// Apex heights (local maxima of z where v_z turns from + to −) of body b.
+inline std::vector<double> apexes(const core::Run& run, std::size_t b) {
+  std::vector<double> out;
+  for (std::size_t k = 1; k < run.samples.size(); ++k)
+    if (body(run.samples[k - 1], b).velocity.z() > 0 && body(run.samples[k], b).velocity.z() <= 0)
+      out.push_back(std::max(body(run.samples[k - 1], b).position.z(), body(run.samples[k], b).position.z()));
+  return out;
+}
+
+template <class Backend>
+class ResponseCases : public ::testing::Test {};
+TYPED_TEST_SUITE_P(ResponseCases);
+
+// A cube dropped flat on a static slab, ε = 0.5: the speed after each bounce
+// is ε times the speed before, so each apex above the resting height is ε² =
+// 0.25 of the one before. Tolerance 1%: an impact is resolved anywhere within
+// the penetration tolerance (1e-4 m of a 0.25 m rise: 4e-4 relative), the
+// apex is read from samples 2 ms apart (½ g dt² = 2e-5 m), and RK4 is exact
+// for free flight. Then it rests: on the slab within the tolerance, at rest
+// to 1e-6 m/s, and stays there for the last second (no sinking, no creep).
+TYPED_TEST_P(ResponseCases, FlatDropBouncesByEpsilonSquaredAndRests) {
+  const auto scene = bundled("cube_drop_flat");
+  const core::Run run = core::simulate<TypeParam>(scene);
+  ASSERT_FALSE(run.error) << *run.error;
+  const double rest = 0.1;  // slab top 0 + half the cube
+  const auto up = apexes(run, 1);
+  ASSERT_GE(up.size(), 3u);
+  EXPECT_NEAR((up[0] - rest) / (1.1 - rest), 0.25, 0.0025);
+  EXPECT_NEAR((up[1] - rest) / (up[0] - rest), 0.25, 0.0025);
+  EXPECT_NEAR((up[2] - rest) / (up[1] - rest), 0.25, 0.0025);
+  const double tol = 1e-4;
+  for (const auto& s : run.samples) {
+    EXPECT_GT(body(s, 1).position.z(), rest - tol) << "sank at t=" << s.t;
+    if (s.t < scene.duration - 1.0) continue;
+    EXPECT_LT(std::abs(body(s, 1).position.z() - rest), tol) << s.t;
+    EXPECT_LT(body(s, 1).velocity.norm(), 1e-6) << s.t;
+  }
+  EXPECT_EQ(run.counters.at("impact_searches_unresolved"), 0u);
+}
+
+// Edge and corner first: the cube bounces, tips and comes to rest flat, one
+// face down: centre 0.1 above the slab within the tolerance, no vertical
+// motion, one body axis vertical (1e-6 rad). The response is frictionless
+// (eq. 47–53), so the horizontal velocity and the spin about the vertical
+// that the impacts left stay: they are checked constant over the last second.
+TYPED_TEST_P(ResponseCases, EdgeAndCornerDropsComeToRestFlat) {
+  for (const char* name : {"cube_drop_edge", "cube_drop_corner"}) {
+    const auto scene = bundled(name);
+    const core::Run run = core::simulate<TypeParam>(scene);
+    ASSERT_FALSE(run.error) << name << ": " << *run.error;
+    const core::Sample* settled = nullptr;
+    for (const auto& s : run.samples) {
+      EXPECT_GT(body(s, 1).position.z(), 0.1 - 1e-4) << name << " sank at " << s.t;
+      if (s.t < scene.duration - 1.0) continue;
+      if (!settled) settled = &s;
+      const auto& b = body(s, 1);
+      EXPECT_NEAR(b.position.z(), 0.1, 1e-4) << name << " t=" << s.t;
+      EXPECT_LT(std::abs(b.velocity.z()), 1e-6) << name << " t=" << s.t;
+      const Eigen::Matrix3d r =
+          Eigen::Quaterniond(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]).toRotationMatrix();
+      // Level within the tolerance: the corners of the bottom face may rest at
+      // different depths in [0, tol], so the tilt is at most tol / (face diagonal).
+      const double tilt = std::acos(std::min(1.0, r.row(2).cwiseAbs().maxCoeff()));
+      EXPECT_LT(tilt, 1e-4 / (0.2 * std::sqrt(2.0))) << name << " t=" << s.t;
+      // The impulses are solved to 1e-6 m/s (core/collisions.hpp), which at the
+      // cube's half width is 1e-5 rad/s of rocking at most.
+      EXPECT_LT((b.velocity - body(*settled, 1).velocity).norm(), 1e-6) << name << " t=" << s.t;
+      EXPECT_LT((b.angular_velocity - body(*settled, 1).angular_velocity).norm(), 1e-5) << name << " t=" << s.t;
+      EXPECT_LT(std::hypot(b.angular_velocity.x(), b.angular_velocity.y()), 1e-5) << name << " t=" << s.t;
+    }
+  }
+}
+
+// Two free bodies, ε = 1: the impulses are equal and opposite at one point, so
+// linear and angular momentum are conserved exactly but for rounding, and the
+// kinetic energy by the choice of ε. Compared between the last sample before
+// and the first after the contact; 1e-9 relative covers RK4's rotation error
+// over the 2 ms between them (measured ~1e-12) and leaves the impulse's own
+// error (rounding, ~1e-15) far inside it.
+TYPED_TEST_P(ResponseCases, ElasticImpactConservesEnergyAndMomenta) {
+  const core::Run run = core::simulate<TypeParam>(bundled("elastic_pair"));
+  ASSERT_FALSE(run.error) << *run.error;
+  ASSERT_GT(run.counters.at("contacts"), 0u);
+  // The impact: the first sample where the plate's velocity has changed.
+  std::size_t k = 1;
+  while (k < run.samples.size() && (body(run.samples[k], 1).velocity - body(run.samples[0], 1).velocity).norm() < 1e-9) ++k;
+  ASSERT_LT(k, run.samples.size()) << "no impact";
+  const auto& before = run.samples[k - 1];
+  const auto& after = run.samples[k];
+  EXPECT_NEAR(after.kinetic / before.kinetic - 1, 0, 1e-9);
+  EXPECT_LT((after.linear_momentum - before.linear_momentum).norm() / before.linear_momentum.norm(), 1e-9);
+  EXPECT_LT((after.angular_momentum - before.angular_momentum).norm() / before.angular_momentum.norm(), 1e-9);
+  // And over the whole run (several contacts may follow).
+  const auto& last = run.samples.back();
+  EXPECT_NEAR(last.kinetic / run.samples[0].kinetic - 1, 0, 1e-9);
+  EXPECT_LT((last.linear_momentum - run.samples[0].linear_momentum).norm() / run.samples[0].linear_momentum.norm(), 1e-9);
+}
+
+// Edge through edge (fig. 10): a's edge runs along x, b's along y, so the
+// common normal is z and the impulse changes only the z velocities: x and y
+// velocities stay as they were (to rounding), momentum is conserved, and the
+// two boxes part (b above a moving up relative to it).
+TYPED_TEST_P(ResponseCases, EdgeEdgeImpulseAlongTheCommonNormal) {
+  const core::Run run = core::simulate<TypeParam>(bundled("box_edge_edge"));
+  ASSERT_FALSE(run.error) << *run.error;
+  const auto& first = run.samples.front();
+  const auto& last = run.samples.back();
+  EXPECT_GT(run.counters.at("contacts"), 0u);
+  for (std::size_t b = 0; b < 2; ++b) {
+    EXPECT_NEAR(body(last, b).velocity.x(), body(first, b).velocity.x(), 1e-12);
+    EXPECT_NEAR(body(last, b).velocity.y(), body(first, b).velocity.y(), 1e-12);
+  }
+  EXPECT_GT(body(last, 1).velocity.z() - body(last, 0).velocity.z(), 0);
+  EXPECT_LT((last.linear_momentum - first.linear_momentum).norm(), 1e-12);
+}
+
+// Fig. 8: pushed into the pyramid's point, the cube comes back (+x) spinning.
+TYPED_TEST_P(ResponseCases, CubeBouncesOffThePyramidsPoint) {
+  const core::Run run = core::simulate<TypeParam>(bundled("cube_pyramid_point"));
+  ASSERT_FALSE(run.error) << *run.error;
+  const auto& last = body(run.samples.back(), 1);
+  EXPECT_GT(last.velocity.x(), 0);
+  EXPECT_GT(last.angular_velocity.norm(), 0.1);
+  // The apex (0.3, 0, 0) never gets deeper into the cube than the tolerance:
+  // the cube's centre stays at least its inradius (0.1) minus 1e-4 from it.
+  for (const auto& s : run.samples)
+    EXPECT_GT((body(s, 1).position - Eigen::Vector3d(0.3, 0, 0)).norm(), 0.1 - 1e-4) << s.t;
+}
+
+// 27 bodies in a closed box: no NaN, and every centre stays inside the walls
+// (inner faces at ±0.6) at every sample: nothing tunnels or escapes. The test
+// runs the first 3 s (the bodies are thrown at up to 3.5 m/s and spinning; by
+// 3 s most lie on the floor) to keep the suite fast; the whole 10 s run is
+// `gacompare run data/scenes/bodies_in_box.json` (about 11 s of CPU per
+// backend) and `gacompare check`, which CI runs too.
+TYPED_TEST_P(ResponseCases, BodiesInABoxStayInside) {
+  auto scene = bundled("bodies_in_box");
+  scene.duration = 3.0;
+  const core::Run run = core::simulate<TypeParam>(scene);
+  ASSERT_FALSE(run.error) << *run.error;
+  EXPECT_DOUBLE_EQ(run.samples.back().t, scene.duration);
+  for (const auto& s : run.samples)
+    for (std::size_t b = 6; b < s.bodies.size(); ++b)
+      EXPECT_LT(body(s, b).position.cwiseAbs().maxCoeff(), 0.6) << scene.bodies[b].name << " at t=" << s.t;
+  EXPECT_GT(run.counters.at("contacts"), 100u);
+}
+
+// fn 28: bodies overlapping at t = 0 are refused, naming the pair.
+TYPED_TEST_P(ResponseCases, OverlapAtTheStartIsRefusedByName) {
+  auto scene = bundled("cube_drop_flat");
+  scene.bodies[1].position.z() = 0.05;
+  try {
+    core::simulate<TypeParam>(scene);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::input);
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'slab' and 'cube' overlap at t = 0"), std::string::npos) << what;
+  }
+}
+
+// The two time-of-impact searches find impacts in the band; Illinois on the
+// separating-axis depth needs fewer state evaluations than bisection.
+TYPED_TEST_P(ResponseCases, IllinoisNeedsFewerEvaluationsThanBisection) {
+  auto scene = bundled("cube_drop_corner");
+  scene.duration = 1.2;  // the impacts before it settles
+  for (auto& e : scene.effects)
+    if (auto* c = std::get_if<core::Collisions>(&e)) c->penetration_tolerance = 1e-7;
+  std::map<core::TimeOfImpact, core::Run> runs;
+  for (const auto m : {core::TimeOfImpact::bisection, core::TimeOfImpact::illinois}) {
+    for (auto& e : scene.effects)
+      if (auto* c = std::get_if<core::Collisions>(&e)) c->time_of_impact = m;
+    runs[m] = core::simulate<TypeParam>(scene);
+    ASSERT_FALSE(runs[m].error) << *runs[m].error;
+    EXPECT_GT(runs[m].counters.at("impact_searches"), 0u);
+    EXPECT_EQ(runs[m].counters.at("impact_searches_unresolved"), 0u);
+  }
+  const auto per_search = [](const core::Run& r) {
+    return double(r.counters.at("impact_state_evaluations")) / double(r.counters.at("impact_searches"));
+  };
+  EXPECT_LT(per_search(runs[core::TimeOfImpact::illinois]), per_search(runs[core::TimeOfImpact::bisection]));
+}
+
+REGISTER_TYPED_TEST_SUITE_P(ResponseCases, FlatDropBouncesByEpsilonSquaredAndRests, EdgeAndCornerDropsComeToRestFlat,
+                            ElasticImpactConservesEnergyAndMomenta, EdgeEdgeImpulseAlongTheCommonNormal,
+                            CubeBouncesOffThePyramidsPoint, BodiesInABoxStayInside, OverlapAtTheStartIsRefusedByName,
+                            IllinoisNeedsFewerEvaluationsThanBisection);
+
+}  // namespace gacompare::testing

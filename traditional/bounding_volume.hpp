@@ -1,0 +1,57 @@
+#pragma once
+// Bounding spheres, traditional algebra (issue #6, §2.4.1): the SphereOps policy
+// that core/bounding_volume.hpp (exhaustive search, Welzl) and
+// core/broadphase.hpp (sort and sweep) run on. A sphere is a centre and a radius
+// (4 numbers; §2.4.1 notes the dual sphere's 5). Twin: cga/bounding_volume.hpp,
+// with the same names in the same order: put them side by side and only the
+// algebra differs.
+#include "core/bounding_volume.hpp"
+#include "traditional/geometry.hpp"
+
+#include <optional>
+
+namespace gacompare::traditional {
+
+struct SphereOps {
+  using Sphere = traditional::Sphere;
+  using Point = Vec3;
+  static constexpr const char* name = "traditional";
+
+  static Point point(const Vec3& x) { return x; }
+  static Sphere sphere(const Vec3& centre, double radius) { return traditional::sphere(centre, radius); }
+
+  // §2.4.1 fig. 6a: centred midway, radius half the distance.
+  static Sphere sphere_2(const Point& a, const Point& b) { return {0.5 * (a + b), 0.5 * (b - a).norm()}; }
+
+  // §2.4.1 fig. 6b: the circumcircle's centre and radius (traditional::circumcircle:
+  // the cross-product closed form relative to a, not the report's eq. 38).
+  static std::optional<Sphere> sphere_3(const Point& a, const Point& b, const Point& c) {
+    const CircleResult k = circumcircle(a, b, c);
+    if (k.kind != Kind::circle) return std::nullopt;  // collinear or coincident
+    return Sphere{k.centre, k.radius};
+  }
+
+  // §2.4.1 fig. 6c: the circumsphere (traditional::sphere_through: Cramer's rule
+  // with cross products relative to a, where the report inverts a 3×3 matrix).
+  static std::optional<Sphere> sphere_4(const Point& a, const Point& b, const Point& c, const Point& d) {
+    const SphereResult s = sphere_through(a, b, c, d);
+    if (s.kind != Kind::sphere) return std::nullopt;  // coplanar
+    return Sphere{s.centre, s.radius};
+  }
+
+  // Inside or on, by the distance: side(s, x) = ½(|x − c|² − ρ²) ≤ tol, the
+  // report's sign convention (negative inside, traditional/geometry.hpp).
+  static bool contains(const Sphere& s, const Point& x, double tol) { return side(s, x) <= tol; }
+
+  // The distance test |c1 − c2| ≤ ρ1 + ρ2, squared (no root). Touching overlaps;
+  // nested spheres overlap (their balls do, though their surfaces do not meet).
+  static bool overlap(const Sphere& s1, const Sphere& s2) {
+    const double r = s1.radius + s2.radius;
+    return (s2.centre - s1.centre).squaredNorm() <= r * r;
+  }
+
+  static Vec3 centre(const Sphere& s) { return traditional::centre(s); }
+  static double radius(const Sphere& s) { return traditional::radius(s); }
+};
+
+}  // namespace gacompare::traditional
