@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <set>
 #include <sstream>
 
 namespace gacompare::compare {
@@ -140,8 +141,12 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
       for (const auto& s : b.run.samples) worst = std::max(worst, s.constraint_violation);
       return fmt("%.3e", worst);
     });
-    for (const auto& [name, value] : r.backends.front().run.counters) {
-      (void)value;
+    // Every backend's counters, by name (a backend may count what others do
+    // not: bullet counts its steps and contact points), a dash where one has none.
+    std::set<std::string> names;
+    for (const auto& b : r.backends)
+      for (const auto& counter : b.run.counters) names.insert(counter.first);
+    for (const auto& name : names) {
       o << "| " << name << " |";
       for (const auto& b : r.backends) {
         const auto it = b.run.counters.find(name);

@@ -1,6 +1,7 @@
 #include "compare/runner.hpp"
 
 #include "cga/backend.hpp"
+#include "compare/bullet_world.hpp"
 #include "core/error.hpp"
 #include "core/generators.hpp"
 #include "core/simulator.hpp"
@@ -11,14 +12,16 @@
 namespace gacompare::compare {
 
 const std::vector<std::string>& backend_names() {
-  static const std::vector<std::string> names{std::string(traditional::Backend::name), std::string(cga::Backend::name)};
+  static const std::vector<std::string> names{std::string(traditional::Backend::name), std::string(cga::Backend::name),
+                                              "bullet"};
   return names;
 }
 
 core::Run run_backend(const core::Scene& scene, std::string_view backend) {
   if (backend == traditional::Backend::name) return core::simulate<traditional::Backend>(scene);
   if (backend == cga::Backend::name) return core::simulate<cga::Backend>(scene);
-  throw input_error("unknown backend '" + std::string(backend) + "' (expected traditional or cga)");
+  if (backend == "bullet") return simulate_bullet(scene);  // throws input_error where Bullet cannot run it
+  throw input_error("unknown backend '" + std::string(backend) + "' (expected traditional, cga or bullet)");
 }
 
 namespace {
@@ -31,8 +34,25 @@ bool same_state(const core::Sample& a, const core::Sample& b) {
 }
 }  // namespace
 
-SceneResult compare_scene(const core::Scene& written, const std::vector<std::string>& backends, int repeats) {
+std::vector<std::string> backends_for(const core::Scene& scene, const std::vector<std::string>& requested,
+                                      Selection selection) {
+  if (selection == Selection::exactly) {
+    // Asked for by name: refuse before anything runs, not after the other backends.
+    if (std::find(requested.begin(), requested.end(), "bullet") != requested.end())
+      if (const std::string why = bullet_unsupported(scene); !why.empty())
+        throw input_error(scene.file.string() + ": bullet: " + why);
+    return requested;
+  }
+  std::vector<std::string> out;
+  for (const auto& b : requested)
+    if (b != "bullet" || (scene.find_effect<core::Collisions>() && bullet_unsupported(scene).empty())) out.push_back(b);
+  return out;
+}
+
+SceneResult compare_scene(const core::Scene& written, const std::vector<std::string>& requested, int repeats,
+                          Selection selection) {
   const core::Scene scene = core::expand_generators(written);
+  const std::vector<std::string> backends = backends_for(scene, requested, selection);
   SceneResult result{scene, std::vector<BackendResult>(backends.size())};
   for (int r = 0; r < repeats; ++r) {
     for (std::size_t k = 0; k < backends.size(); ++k) {

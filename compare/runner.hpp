@@ -10,8 +10,26 @@
 
 namespace gacompare::compare {
 
-// The backends that can run a scene, in report order.
+// The backends that can run a scene, in report order: traditional, cga, and
+// "bullet", the whole-simulation reference (compare/bullet_world.hpp).
 const std::vector<std::string>& backend_names();
+
+// How a list of backends is read.
+enum class Selection {
+  // The list, less bullet on the scenes it does not suit: bullet runs only on
+  // scenes that list the collisions effect and that Bullet can simulate
+  // (bullet_unsupported() == ""), and is left out silently elsewhere. The CLI's
+  // default (compare without --backends) is backend_names() read this way.
+  where_supported,
+  // The list as given (the CLI's --backends, even naming all three, and run
+  // --backend): bullet on a scene Bullet cannot run is an input_error, raised
+  // before anything runs.
+  exactly,
+};
+
+// The backends compare_scene runs for `requested`, read as `selection` says.
+std::vector<std::string> backends_for(const core::Scene& scene, const std::vector<std::string>& requested,
+                                      Selection selection = Selection::where_supported);
 
 // One simulation through the named backend; the scene's generators must be expanded. Throws input_error for an unknown
 // backend or a scene the backend cannot simulate.
@@ -28,11 +46,13 @@ struct BackendResult {
 
 struct SceneResult {
   core::Scene scene;  // with its generators expanded: particles match the samples
-  std::vector<BackendResult> backends;  // in backend_names() order
+  std::vector<BackendResult> backends;  // in the order of backends_for(scene, requested, selection)
 };
 
-// Runs every backend `repeats` times, alternating which goes first in each round
-// (ABBA…) so neither always runs on a warm or a cold machine.
-SceneResult compare_scene(const core::Scene& scene, const std::vector<std::string>& backends, int repeats);
+// Runs every backend of backends_for(scene, requested, selection) `repeats`
+// times, alternating which goes first in each round (ABBA…) so none always runs
+// on a warm or a cold machine.
+SceneResult compare_scene(const core::Scene& scene, const std::vector<std::string>& requested, int repeats,
+                          Selection selection = Selection::where_supported);
 
 }  // namespace gacompare::compare

@@ -110,31 +110,44 @@ PairContact separating_axis(const Body& a, const Body& b, bool early_exit = fals
   };
   if (faces(a, b, Feature::face_a) || faces(b, a, Feature::face_b)) return done();
 
-  // Edge pairs that span a face of A − B.
-  const auto& ea = a.mesh().edges();
-  const auto& eb = b.mesh().edges();
-  const auto& pa = a.mesh().edge_planes();
-  const auto& pb = b.mesh().edge_planes();
+  // Edge pairs that span a face of A − B. Each body's edges are read once into
+  // a flat list (a point, the direction, the two face normals), so the E_a × E_b
+  // loop touches contiguous data only.
+  struct Edge {
+    Vec3 p, d, n0, n1;
+  };
+  const auto edges_of = [](const Body& body) {
+    const auto& e = body.mesh().edges();
+    const auto& ep = body.mesh().edge_planes();
+    std::vector<Edge> out(e.size());
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      const Vec3 p = body.vertex(e[i][0]);
+      // The triangle of plane ep[i][0] runs the edge from [0] to [1], so the
+      // edge direction is n0 × n1 and Gregorius' b × a is −d.
+      out[i] = {p, body.vertex(e[i][1]) - p, body.normal(ep[i][0]), body.normal(ep[i][1])};
+    }
+    return out;
+  };
+  const std::vector<Edge> ea = edges_of(a), eb = edges_of(b);
   const Vec3 ca = a.centre();
-  for (std::size_t i = 0; i < ea.size(); ++i) {
-    const Vec3 a0 = a.vertex(ea[i][0]), da = a.vertex(ea[i][1]) - a0;
-    const Vec3 na = a.normal(pa[i][0]), nb = a.normal(pa[i][1]);
-    // The triangle of plane pa[i][0] runs the edge from [0] to [1], so the edge
-    // direction is na × nb and b × a in Gregorius' order is −da.
-    for (std::size_t j = 0; j < eb.size(); ++j) {
-      const Vec3 b0 = b.vertex(eb[j][0]), db = b.vertex(eb[j][1]) - b0;
-      const Vec3 nc = b.normal(pb[j][0]), nd = b.normal(pb[j][1]);
-      if (!spans_minkowski_face(na, nb, -da, nc, nd, -db)) continue;
-      Vec3 axis = Body::edge_axis(da, db);
+  for (const Edge& x : ea) {
+    const Vec3 bxa = -x.d;
+    for (const Edge& y : eb) {
+      // spans_minkowski_face(x.n0, x.n1, −x.d, y.n0, y.n1, −y.d), first test first.
+      const double cba = -y.n0.dot(bxa), dba = -y.n1.dot(bxa);
+      if (!(cba * dba < 0)) continue;
+      const double adc = -x.n0.dot(y.d), bdc = -x.n1.dot(y.d);
+      if (!(adc * bdc < 0 && cba * bdc > 0)) continue;
+      Vec3 axis = Body::edge_axis(x.d, y.d);
       const double len = axis.norm();
-      if (!(len > kParallelSin * da.norm() * db.norm())) continue;
+      if (!(len > kParallelSin * x.d.norm() * y.d.norm())) continue;
       axis /= len;
-      if (axis.dot(a0 - ca) < 0) axis = -axis;  // outward from A
-      const double s = axis.dot(b0 - a0);
+      if (axis.dot(x.p - ca) < 0) axis = -axis;  // outward from A
+      const double s = axis.dot(y.p - x.p);
       if (s > gap) {
         gap = s;
         best.normal = axis;
-        best.contact = edge_edge_midpoint(a0, da, b0, db);
+        best.contact = edge_edge_midpoint(x.p, x.d, y.p, y.d);
         best.feature = Feature::edge_edge;
         if (early_exit && gap > 0) return done();
       }

@@ -72,7 +72,11 @@ struct Simulation {
         };
         ++c.counters.impact_searches;
         double lo = t0, hi = t1, g_lo = c.depth_of(m.bodies, bodies(y0), pairs, inner), g_hi = d.max_depth;
-        const double aim = 0.5 * (std::max(g_lo, 0.0) + tol);  // Illinois: the depth it steers to
+        // Illinois steers to a depth near the top of the band: the later the
+        // accepted time, the more a search advances (a resting body sinks
+        // ½ g h² per step, more than a tight tolerance, and needs one search
+        // per (tol − depth) it may sink).
+        const double aim = tol - 0.2 * (tol - std::max(g_lo, 0.0));
         int side = 0;  // Illinois: which end was kept last (−1 lo, +1 hi)
         double f_lo = g_lo - aim, f_hi = g_hi - aim;
         bool found = false;

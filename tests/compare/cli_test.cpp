@@ -1,5 +1,7 @@
 // The gacompare command line end to end: the files it writes, their fields, and
 // its exit codes (0 success, 1 a run failed, 2 bad usage or input).
+#include "cli_run.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -14,50 +16,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-// This process's scratch folder, removed when the test binary exits.
-const fs::path& scratch() {
-  struct Scratch {
-    fs::path dir = fs::temp_directory_path() / ("gacompare_cli_" + std::to_string(::getpid()));
-    ~Scratch() {
-      std::error_code ec;
-      fs::remove_all(dir, ec);
-    }
-  };
-  static const Scratch s;
-  return s.dir;
-}
-
-// Runs gacompare with `args`; stdout and stderr captured separately.
-Result gacompare(const std::string& args) {
-  const fs::path dir = scratch();
-  fs::create_directories(dir);
-  const std::string cmd = std::string(GACOMPARE_BIN) + " " + args + " >" + (dir / "out").string() + " 2>" +
-                          (dir / "err").string();
-  const int status = std::system(cmd.c_str());
-  auto slurp = [](const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  };
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out"), slurp(dir / "err")};
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = scratch() / name;
-  fs::remove_all(d);
-  return d;
-}
-
-json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return json::parse(in);
-}
 
 std::string read_text(const fs::path& p) {
   std::ifstream in(p);
