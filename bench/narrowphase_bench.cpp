@@ -115,6 +115,19 @@ void point_in_body(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations());
 }
 
+template <class Prepared>
+void prepared_segments(benchmark::State& st) {
+  const auto& s = segments().s;
+  std::vector<Prepared> tris;
+  for (const auto& x : s) tris.emplace_back(x[2], x[3], x[4]);
+  std::size_t i = 0;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(tris[i].through(s[i][0], s[i][1]));
+    if (++i == s.size()) i = 0;
+  }
+  st.SetItemsProcessed(st.iterations());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -164,6 +177,14 @@ int main(int argc, char** argv) {
       if (++i == s.size()) i = 0;
     }
     st.SetItemsProcessed(st.iterations());
+  });
+  // The narrowphase's form: the triangle prepared once (eq. 41–42 rows; the
+  // plane and reciprocal frame of eq. 43–46), then one segment per item.
+  benchmark::RegisterBenchmark("BM_segment_through_prepared/traditional", [](benchmark::State& st) {
+    prepared_segments<traditional::PreparedTriangle>(st);
+  });
+  benchmark::RegisterBenchmark("BM_segment_through_prepared/cga", [](benchmark::State& st) {
+    prepared_segments<cga::PreparedTriangle>(st);
   });
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

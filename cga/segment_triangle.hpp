@@ -1,6 +1,6 @@
 #pragma once
 // Segment through triangle, the conformal way (§2.4.4 after [7], eq. 43–46).
-// Twin: traditional/segment_triangle.hpp (same name, same result type).
+// Twin: traditional/segment_triangle.hpp (same names, same result type).
 //
 // Stage 1: the line L = L0 ∧ L1 ∧ n meets the plane Φ = T0 ∧ T1 ∧ T2 ∧ n in a
 // flat point; with the plane dual, π = Φ*, the meet is one contraction
@@ -20,41 +20,62 @@
 // that makes T^i·T_i = +1 in our conventions (tested) is the one used here.
 // Inside for every λ_i ≥ 0 (the report also asks λ_i ≤ 1, implied by the sum).
 //
+// π and the reciprocal frame depend on the triangle alone: PreparedTriangle
+// builds them once per triangle (a body tests each triangle against many
+// edges), as the twin prepares its eq. 41–42 rows.
+//
 // Parallel segment: the same predicate as the twin, |π·(L1 − L0)| ≤ kSinTol·|L1 − L0|
 // for the normalised plane.
 #include "cga/algebra/cl41.hpp"
 #include "cga/geometry/meet.hpp"
 #include "core/collision.hpp"
 
+#include <array>
 #include <cmath>
 #include <optional>
 
 namespace gacompare::cga {
 
+struct PreparedTriangle {
+  DualPlane pi{};                      // Φ*, any scale
+  double pi_norm = 0;                  // |Euclidean part of π|
+  std::array<Vector5, 3> reciprocal{};  // T^i, eq. 44
+
+  PreparedTriangle() = default;
+  PreparedTriangle(const Eigen::Vector3d& t0, const Eigen::Vector3d& t1, const Eigen::Vector3d& t2) {
+    const ConformalPoint T0 = up(t0), T1 = up(t1), T2 = up(t2);
+    const auto n = n_inf();
+    const Quadvector5 phi = ((T0 ^ T1) ^ T2) ^ n;
+    pi = !phi;
+    pi_norm = detail::euclid(pi).norm();
+    const double inv_phi2 = 1 / scalar_product(phi, phi);
+    const auto frame = [&](const ConformalPoint& p, const ConformalPoint& q) {
+      return widen<Vector5::blades>((n ^ (p ^ q)) | phi) * inv_phi2;
+    };
+    reciprocal = {frame(T1, T2), frame(T2, T0), frame(T0, T1)};
+  }
+
+  std::optional<collision::SegmentHit> through(const Eigen::Vector3d& l0, const Eigen::Vector3d& l1) const {
+    const ConformalPoint L0 = up(l0), L1 = up(l1);
+    const double alpha = scalar_product(pi, L0), beta = scalar_product(pi, L1);
+    if (!(std::abs(alpha - beta) > kSinTol * pi_norm * (l1 - l0).norm())) return std::nullopt;  // parallel
+    if ((alpha > 0 && beta > 0) || (alpha < 0 && beta < 0)) return std::nullopt;              // one side
+    const Line line = widen<Line::blades>((L0 ^ L1) ^ n_inf());
+    const Bivector5 flat = pi | line;  // the meet
+    if (!(std::abs(flat[blade::eebar]) > 0)) return std::nullopt;
+    const Eigen::Vector3d point = detail::flat_point(flat);
+    const ConformalPoint I = up(point);
+    const std::array<double, 3> bary{scalar_product(reciprocal[0], I), scalar_product(reciprocal[1], I),
+                                     scalar_product(reciprocal[2], I)};
+    if (bary[0] < 0 || bary[1] < 0 || bary[2] < 0) return std::nullopt;
+    return collision::SegmentHit{point, alpha / (alpha - beta), bary};
+  }
+};
+
 inline std::optional<collision::SegmentHit> segment_triangle(const Eigen::Vector3d& l0, const Eigen::Vector3d& l1,
                                                              const Eigen::Vector3d& t0, const Eigen::Vector3d& t1,
                                                              const Eigen::Vector3d& t2) {
-  const ConformalPoint L0 = up(l0), L1 = up(l1), T0 = up(t0), T1 = up(t1), T2 = up(t2);
-  const auto n = n_inf();
-  const Quadvector5 phi = ((T0 ^ T1) ^ T2) ^ n;
-  const DualPlane pi = !phi;  // any scale: only ratios are read below
-  const double alpha = scalar_product(pi, L0), beta = scalar_product(pi, L1);
-  const double pn = detail::euclid(pi).norm();
-  if (!(std::abs(alpha - beta) > kSinTol * pn * (l1 - l0).norm())) return std::nullopt;  // parallel
-  if ((alpha > 0 && beta > 0) || (alpha < 0 && beta < 0)) return std::nullopt;         // both ends on one side
-  const Line line = widen<Line::blades>((L0 ^ L1) ^ n);
-  const Bivector5 flat = pi | line;  // the meet
-  if (!(std::abs(flat[blade::eebar]) > 0)) return std::nullopt;
-  const Eigen::Vector3d point = detail::flat_point(flat);
-  // Reciprocal frame (eq. 43–46), scaled by 1/Φ².
-  const double phi2 = scalar_product(phi, phi);
-  const ConformalPoint I = up(point);
-  const auto lambda = [&](const ConformalPoint& p, const ConformalPoint& q) {
-    return scalar_product((n ^ (p ^ q)) | phi, I) / phi2;
-  };
-  const std::array<double, 3> bary{lambda(T1, T2), lambda(T2, T0), lambda(T0, T1)};
-  if (bary[0] < 0 || bary[1] < 0 || bary[2] < 0) return std::nullopt;
-  return collision::SegmentHit{point, alpha / (alpha - beta), bary};
+  return PreparedTriangle(t0, t1, t2).through(l0, l1);
 }
 
 }  // namespace gacompare::cga

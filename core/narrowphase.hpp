@@ -2,7 +2,7 @@
 // The narrowphase for a pair of convex polyhedra (issue #6, §2.4.2–2.4.4,
 // fig. 7), written once over a backend's Body (traditional/narrowphase.hpp,
 // cga/narrowphase.hpp), which supplies the algebra: where a point is relative
-// to a face, the axis of two edges, a segment through a triangle.
+// to a face, the axis of two edges, a segment through one of its triangles.
 //
 // Two methods:
 //   report: the report's detector (fig. 7). Every vertex of one body tested
@@ -95,7 +95,7 @@ void edges_through_faces(const Body& a, const Body& b, const Body& s, const Body
     if (least_deep_face(t, s, se[i][0]).first <= 0 || least_deep_face(t, s, se[i][1]).first <= 0) continue;
     const Vec3 s0 = s.vertex(se[i][0]), s1 = s.vertex(se[i][1]);
     for (int k = 0; k < static_cast<int>(tris.size()); ++k) {
-      const auto hit = Body::segment_triangle(s0, s1, t.vertex(tris[k][0]), t.vertex(tris[k][1]), t.vertex(tris[k][2]));
+      const auto hit = t.segment_through(k, s0, s1);
       if (!hit) continue;
       // The nearest feature edge of the face (polygon) this triangle belongs to.
       int j = -1;

@@ -40,9 +40,14 @@ class Body {
   // §2.4.3: n·x − d, > 0 outside.
   double plane_distance(int k, const Body& other, int j) const { return planes_[k].distance(other.vertices_[j]); }
   static Vec3 edge_axis(const Vec3& da, const Vec3& db) { return da.cross(db); }
-  static std::optional<collision::SegmentHit> segment_triangle(const Vec3& l0, const Vec3& l1, const Vec3& t0,
-                                                               const Vec3& t1, const Vec3& t2) {
-    return traditional::segment_triangle(l0, l1, t0, t1, t2);
+  // §2.4.4: the segment l0–l1 through triangle k of this body, the triangle
+  // prepared once per body and query (segment_triangle.hpp).
+  std::optional<collision::SegmentHit> segment_through(int k, const Vec3& l0, const Vec3& l1) const {
+    if (prepared_.empty()) {
+      prepared_.reserve(mesh_->triangles().size());
+      for (const auto& [a, b, c] : mesh_->triangles()) prepared_.emplace_back(vertex(a), vertex(b), vertex(c));
+    }
+    return prepared_[k].through(l0, l1);
   }
 
  private:
@@ -50,6 +55,7 @@ class Body {
   std::vector<Vec3> vertices_;
   std::vector<core::Plane> planes_;
   Vec3 centre_;
+  mutable std::vector<PreparedTriangle> prepared_;  // built on the first segment test
 };
 
 inline collision::PairContact narrowphase(const collision::Placed& a, const collision::Placed& b,
