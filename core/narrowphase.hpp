@@ -51,6 +51,15 @@ std::pair<double, int> least_deep_face(const Body& f, const Body& o, int j) {
   return {best, arg};
 }
 
+// §2.4.3 for every vertex of `o` against `f`, once: each is needed by the
+// vertex test and again by the edge test below.
+template <class Body>
+std::vector<std::pair<double, int>> vertex_depths(const Body& f, const Body& o) {
+  std::vector<std::pair<double, int>> out(o.mesh().vertices().size());
+  for (int j = 0; j < static_cast<int>(out.size()); ++j) out[j] = least_deep_face(f, o, j);
+  return out;
+}
+
 // Vertices of `o` inside `f` (§2.4.3): the contact point midway between the
 // vertex and the face it is least deep behind, that face's normal. Inside is
 // the report's rule as it states it, "no dot product positive", so a vertex on
@@ -60,10 +69,10 @@ std::pair<double, int> least_deep_face(const Body& f, const Body& o, int j) {
 // face is the report's normal; it is only the minimum-depth direction when the
 // vertex is near that face (the separating-axis depth does not rely on it).
 template <class Body>
-void vertices_inside(const Body& f, const Body& o, bool f_is_a, std::vector<FeatureContact>& out) {
-  const int vertices = static_cast<int>(o.mesh().vertices().size());
-  for (int j = 0; j < vertices; ++j) {
-    const auto [s, k] = least_deep_face(f, o, j);
+void vertices_inside(const Body& f, const Body& o, const std::vector<std::pair<double, int>>& depth, bool f_is_a,
+                     std::vector<FeatureContact>& out) {
+  for (int j = 0; j < static_cast<int>(depth.size()); ++j) {
+    const auto [s, k] = depth[j];
     if (!(s <= 0)) continue;
     const Vec3 n = f.normal(k);
     out.push_back({o.vertex(j) - (0.5 * s) * n, f_is_a ? n : Vec3(-n), -s, f_is_a ? Feature::face_a : Feature::face_b});
@@ -84,7 +93,8 @@ void vertices_inside(const Body& f, const Body& o, bool f_is_a, std::vector<Feat
 // wrong edge when the face is as small as the penetration. Pairs (edge of a,
 // edge of b) are reported once.
 template <class Body>
-void edges_through_faces(const Body& a, const Body& b, const Body& s, const Body& t, bool s_is_a,
+void edges_through_faces(const Body& a, const Body& b, const Body& s, const Body& t,
+                         const std::vector<std::pair<double, int>>& s_depth, bool s_is_a,
                          std::set<std::pair<int, int>>& seen, std::vector<FeatureContact>& out) {
   const auto& se = s.mesh().edges();
   const auto& te = t.mesh().edges();
@@ -92,7 +102,7 @@ void edges_through_faces(const Body& a, const Body& b, const Body& s, const Body
   const auto& tplane = t.mesh().triangle_plane();
   const auto& tedge_planes = t.mesh().edge_planes();
   for (int i = 0; i < static_cast<int>(se.size()); ++i) {
-    if (least_deep_face(t, s, se[i][0]).first <= 0 || least_deep_face(t, s, se[i][1]).first <= 0) continue;
+    if (s_depth[se[i][0]].first <= 0 || s_depth[se[i][1]].first <= 0) continue;
     const Vec3 s0 = s.vertex(se[i][0]), s1 = s.vertex(se[i][1]);
     for (int k = 0; k < static_cast<int>(tris.size()); ++k) {
       const auto hit = t.segment_through(k, s0, s1);
@@ -126,11 +136,12 @@ void edges_through_faces(const Body& a, const Body& b, const Body& s, const Body
 // Fig. 7's detector: every FeatureContact of the pair, in the Body frame.
 template <class Body>
 void report_contacts(const Body& a, const Body& b, std::vector<FeatureContact>& out) {
-  detail::vertices_inside(a, b, true, out);
-  detail::vertices_inside(b, a, false, out);
+  const auto b_in_a = detail::vertex_depths(a, b), a_in_b = detail::vertex_depths(b, a);
+  detail::vertices_inside(a, b, b_in_a, true, out);
+  detail::vertices_inside(b, a, a_in_b, false, out);
   std::set<std::pair<int, int>> seen;
-  detail::edges_through_faces(a, b, a, b, true, seen, out);
-  detail::edges_through_faces(a, b, b, a, false, seen, out);
+  detail::edges_through_faces(a, b, a, b, a_in_b, true, seen, out);
+  detail::edges_through_faces(a, b, b, a, b_in_a, false, seen, out);
 }
 
 // The whole narrowphase for two placed bodies; points come back in world
