@@ -47,11 +47,7 @@ class Body {
   // §2.4.4: the segment l0–l1 through triangle k of this body, the triangle
   // prepared once per body and query (segment_triangle.hpp).
   std::optional<collision::SegmentHit> segment_through(int k, const Vec3& l0, const Vec3& l1) const {
-    if (prepared_.empty()) {
-      prepared_.reserve(mesh_->triangles().size());
-      for (const auto& [a, b, c] : mesh_->triangles()) prepared_.emplace_back(vertex(a), vertex(b), vertex(c));
-    }
-    return prepared_[k].through(l0, l1);
+    return prepared_.at(*this, k).through(l0, l1);
   }
 
  private:
@@ -59,7 +55,7 @@ class Body {
   std::vector<ConformalPoint> points_;
   std::vector<DualPlane> planes_;
   Vec3 centre_;
-  mutable std::vector<PreparedTriangle> prepared_;  // built on the first segment test
+  collision::PreparedTriangles<PreparedTriangle> prepared_;
 };
 
 inline collision::PairContact narrowphase(const collision::Placed& a, const collision::Placed& b,

@@ -35,6 +35,26 @@ namespace gacompare::collision {
 
 enum class Method : std::uint8_t { report, sat, sat_then_report };
 
+// A body's triangles prepared for segment tests (each backend's
+// PreparedTriangle in segment_triangle.hpp), built on the first test: a body
+// tests each of its triangles against many edges.
+template <class Prepared>
+class PreparedTriangles {
+ public:
+  template <class Body>
+  const Prepared& at(const Body& body, int k) const {
+    if (triangles_.empty()) {
+      triangles_.reserve(body.mesh().triangles().size());
+      for (const auto& [a, b, c] : body.mesh().triangles())
+        triangles_.emplace_back(body.vertex(a), body.vertex(b), body.vertex(c));
+    }
+    return triangles_[k];
+  }
+
+ private:
+  mutable std::vector<Prepared> triangles_;
+};
+
 namespace detail {
 
 // §2.4.3: the face of `f` the vertex j of `o` is least deep behind, and how far
