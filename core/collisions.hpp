@@ -122,22 +122,30 @@ struct Collider {
     return c;
   }
 
-  collision::Placed placed(const Model& m, std::span<const double> y, std::size_t b) const {
-    return {setup.meshes[b].get(), Bodies::pose(m, y, b)};
+  // Every body's pose at state y, once per detection (a rotor or quaternion
+  // becomes a matrix here, not once per pair it takes part in).
+  std::vector<collision::Pose> poses(const Model& m, std::span<const double> y) const {
+    std::vector<collision::Pose> out;
+    out.reserve(setup.meshes.size());
+    for (std::size_t b = 0; b < setup.meshes.size(); ++b) out.push_back(Bodies::pose(m, y, b));
+    return out;
+  }
+  collision::Placed placed(const std::vector<collision::Pose>& pose, std::size_t b) const {
+    return {setup.meshes[b].get(), pose[b]};
   }
 
   // Broadphase and narrowphase at one state.
   Detection detect(const Model& m, std::span<const double> y, Profile& profile) const {
     const std::size_t n = setup.meshes.size();
     BroadphaseResult pairs;
+    std::vector<collision::Pose> pose;
     {
       ScopedStage timed(profile, Stage::broadphase);
+      pose = poses(m, y);
       std::vector<typename Spheres::Sphere> spheres;
       spheres.reserve(n);
-      for (std::size_t b = 0; b < n; ++b) {
-        const collision::Pose p = Bodies::pose(m, y, b);
-        spheres.push_back(Spheres::sphere(p.apply(setup.sphere_centre[b]), setup.sphere_radius[b]));
-      }
+      for (std::size_t b = 0; b < n; ++b)
+        spheres.push_back(Spheres::sphere(pose[b].apply(setup.sphere_centre[b]), setup.sphere_radius[b]));
       pairs = sort_and_sweep<Spheres>(std::span<const typename Spheres::Sphere>(spheres));
       counters.broadphase_candidates += static_cast<std::uint64_t>(pairs.counters.candidates);
     }
@@ -147,7 +155,7 @@ struct Collider {
       if (setup.is_static[i] && setup.is_static[j]) continue;
       ++counters.narrowphase_pairs;
       PairHit h{i, j, {}, {}};
-      h.sat = collision::narrowphase<NarrowBody>(placed(m, y, i), placed(m, y, j), collision::Method::sat_then_report,
+      h.sat = collision::narrowphase<NarrowBody>(placed(pose, i), placed(pose, j), collision::Method::sat_then_report,
                                                  &h.features);
       if (!h.sat.intersect) continue;
       d.max_depth = std::max(d.max_depth, h.sat.depth);
@@ -163,8 +171,9 @@ struct Collider {
     ScopedStage timed(profile, Stage::narrowphase);
     double g = -INFINITY;
     for (const auto& [i, j] : pairs)
-    {
-      const collision::Placed a = placed(m, y, i), b = placed(m, y, j);
+    {  // few pairs, each body in one or two: their poses only
+      const collision::Placed a{setup.meshes[i].get(), Bodies::pose(m, y, i)};
+      const collision::Placed b{setup.meshes[j].get(), Bodies::pose(m, y, j)};
       const Vec3 o = collision::local_origin(a, b);
       g = std::max(g, collision::separating_axis(NarrowBody(a, o), NarrowBody(b, o)).depth);
     }
@@ -239,6 +248,7 @@ struct Collider {
                                               Bodies::velocity_at(m, y, h.a, h.sat.contact));
       if (!resting_pair[hi] && parting > setup.resting_speed) continue;  // an impact: the bodies part by themselves
       const double wa = setup.is_static[h.a] ? 0.0 : 1.0, wb = setup.is_static[h.b] ? 0.0 : 1.0;
+      // The bodies' inverse masses along the normal, at their centres (no turning).
       const double ia = wa * Bodies::inverse_effective_mass(m, y, h.a, Bodies::pose(m, y, h.a).position, h.sat.normal);
       const double ib = wb * Bodies::inverse_effective_mass(m, y, h.b, Bodies::pose(m, y, h.b).position, h.sat.normal);
       if (!(ia + ib > 0)) continue;

@@ -62,8 +62,11 @@ inline bool spans_minkowski_face(const Vec3& a, const Vec3& b, const Vec3& bxa, 
   // With c, d negated: c and d on opposite sides of the plane of a, b; a and b
   // on opposite sides of the plane of −c, −d; and the two arcs in the same
   // hemisphere (not the antipodal crossing of the two great circles).
-  const double cba = -c.dot(bxa), dba = -d.dot(bxa), adc = a.dot(dxc), bdc = b.dot(dxc);
-  return cba * dba < 0 && adc * bdc < 0 && cba * bdc > 0;
+  // The first test alone rejects most pairs: the other two products wait for it.
+  const double cba = -c.dot(bxa), dba = -d.dot(bxa);
+  if (!(cba * dba < 0)) return false;
+  const double adc = a.dot(dxc), bdc = b.dot(dxc);
+  return adc * bdc < 0 && cba * bdc > 0;
 }
 
 // The fast path over a backend's view of a placed body. Body provides, in its
@@ -133,11 +136,7 @@ PairContact separating_axis(const Body& a, const Body& b, bool early_exit = fals
   for (const Edge& x : ea) {
     const Vec3 bxa = -x.d;
     for (const Edge& y : eb) {
-      // spans_minkowski_face(x.n0, x.n1, −x.d, y.n0, y.n1, −y.d), first test first.
-      const double cba = -y.n0.dot(bxa), dba = -y.n1.dot(bxa);
-      if (!(cba * dba < 0)) continue;
-      const double adc = -x.n0.dot(y.d), bdc = -x.n1.dot(y.d);
-      if (!(adc * bdc < 0 && cba * bdc > 0)) continue;
+      if (!spans_minkowski_face(x.n0, x.n1, bxa, y.n0, y.n1, Vec3(-y.d))) continue;
       Vec3 axis = Body::edge_axis(x.d, y.d);
       const double len = axis.norm();
       if (!(len > kParallelSin * x.d.norm() * y.d.norm())) continue;
