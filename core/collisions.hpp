@@ -35,8 +35,8 @@
 //     (warm starting), so a stack's load is carried from step to step instead
 //     of being solved afresh through every box;
 //   - a pair deeper than tol/2 after the impulses is brought to tol/4 by a
-//     split impulse (pseudo-velocities that move and turn the bodies without
-//     touching their momenta), so a resting body never creeps down to the
+//     split impulse (pseudo-velocities that move the bodies along the contact
+//     normals without touching their momenta), so a resting body never creeps down to the
 //     tolerance and forces a time-of-impact search that can make no progress.
 //     The lift does work against gravity of at most m g tol/4 per correction;
 //     the counters say how many there were. Pairs that part after an impact
@@ -353,13 +353,17 @@ struct Collider {
   }
 
   // Positional correction by split impulse (pseudo-velocities, as Bullet's
-  // split impulse and Box2D's soft step do): the same rows, solved for a
-  // displacement and a small turn of each body instead of a velocity, with
-  // targets bringing every contact of the pair to tol/4 deep (rows already
-  // shallower only keep it from getting deeper). The bodies move and turn;
-  // their momenta do not change, so the correction injects none (the old
-  // correction translated the centres along one normal: a teleport that
-  // ignored rotation and the other contacts of a stack).
+  // split impulse does): the same rows, solved together for a displacement of
+  // each body instead of a velocity, with targets bringing every contact of
+  // the pairs to correct to tol/4 deep (the other rows only keep their pairs
+  // from getting deeper, so a correction in a stack is not passed on as
+  // penetration to the next box). The bodies move; their momenta do not
+  // change, so the correction injects none (the old correction translated one
+  // pair's centres along its normal: a teleport that ignored the rest of a
+  // stack). The rows act at the centres: with their arms, the four corners
+  // of a face form a redundant set that Gauss–Seidel leaves with a residual
+  // tilt, and a tilted face's normal pushes sideways (a stack of ten drifted
+  // 6e-4 m in 10 s that way; 6e-8 m without the turn).
   void correct_positions(const Model& m, std::span<double> y, const std::vector<Row>& rows, const Motions& motion,
                          const std::vector<char>& correct) const {
     const double tol = setup.settings.penetration_tolerance;
