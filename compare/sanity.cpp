@@ -238,7 +238,8 @@ CheckLine penetration(const World& w, const core::Scene& scene, const core::Run&
         const double upper = -face_gap(posed[j], posed[i]);
         if (!centre_in && !(upper > 0 && upper - bound[i] > margin)) continue;
         const collision::Placed a{&w.meshes[j], {posed[j].r, posed[j].c}}, b{&w.meshes[i], {posed[i].r, posed[i].c}};
-        const double depth = collision::sat_reference(a, b).depth;
+        double depth = collision::sat_reference(a, b).depth;
+        if (depth < 0) depth = 0;  // apart along an edge × edge axis the faces missed: no penetration
         if (depth - bound[i] > margin || std::isnan(depth))
           margin = depth - bound[i], depth_at = depth, bound_at = bound[i], t_at = s.t, body = i, wall = j;
         if (centre_in && inside.empty())
