@@ -360,22 +360,30 @@ struct Collider {
   // penetration to the next box). The bodies move; their momenta do not
   // change, so the correction injects none (the old correction translated one
   // pair's centres along its normal: a teleport that ignored the rest of a
-  // stack). The rows act at the centres: with their arms, the four corners
-  // of a face form a redundant set that Gauss–Seidel leaves with a residual
-  // tilt, and a tilted face's normal pushes sideways (a stack of ten drifted
-  // 6e-4 m in 10 s that way; 6e-8 m without the turn).
+  // stack). The rows of a face contact (three or more points) act at the
+  // centres: with their arms, the four corners of a face form a redundant set
+  // that Gauss–Seidel leaves with a residual tilt, and a tilted face's normal
+  // pushes sideways (a stack of ten drifted 6e-4 m in 10 s that way; 6e-8 m
+  // without the turn). The rows of an edge or a vertex contact keep their
+  // arms: a cube pivoting on an edge sinks by turning, and lifting its centre
+  // instead raised its energy by 0.24 mJ per correction (caught by check's
+  // energy rule on cube_drop_edge: +1.8 mJ against 1 mJ allowed).
   void correct_positions(const Model& m, std::span<double> y, const std::vector<Row>& rows, const Motions& motion,
                          const std::vector<char>& correct) const {
     const double tol = setup.settings.penetration_tolerance;
     std::vector<Row> fix;
     if (std::find(correct.begin(), correct.end(), 1) == correct.end()) return;
+    std::vector<int> points(correct.size(), 0);
+    for (const auto& r : rows) ++points[r.hit];
     for (const auto& r : rows) {
       Row p = r;
-      const auto& ma = motion.at(r.a);
-      const auto& mb = motion.at(r.b);
-      p.arm_a = Bodies::arm(ma, Bodies::position(ma), r.n);  // at the centre: no turn
-      p.arm_b = Bodies::arm(mb, Bodies::position(mb), r.n);
-      p.k = Bodies::inverse_effective_mass(ma, p.arm_a) + Bodies::inverse_effective_mass(mb, p.arm_b);
+      if (points[r.hit] >= 3) {  // a face: at the centres, no turn
+        const auto& ma = motion.at(r.a);
+        const auto& mb = motion.at(r.b);
+        p.arm_a = Bodies::arm(ma, Bodies::position(ma), r.n);
+        p.arm_b = Bodies::arm(mb, Bodies::position(mb), r.n);
+        p.k = Bodies::inverse_effective_mass(ma, p.arm_a) + Bodies::inverse_effective_mass(mb, p.arm_b);
+      }
       p.lambda = 0;
       p.target = correct[r.hit] ? std::max(0.0, r.depth - 0.25 * tol) : 0.0;
       fix.push_back(p);
