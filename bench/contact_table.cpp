@@ -1,0 +1,118 @@
+// The degenerate-case table of issue #12 (README "Contacts"): every case of the
+// contact family (core/contact_family.hpp) through traditional, cga and Bullet,
+// each judged against its analytic outcome. A cell is "pass" or "FAIL" with the
+// worst error (the check that came closest to, or went furthest past, its
+// tolerance); the reasons for the failures follow the table. Markdown on stdout,
+// progress on stderr.
+//
+//   build/release/bench/contact_table [--filter TEXT] [--backends traditional,cga,bullet] [--max-duration S]
+//
+// --filter keeps the cases whose name contains TEXT; --max-duration shortens
+// every case to at most S simulated seconds (the table says so: a shortened
+// stack is judged on its shorter run).
+#include "cga/backend.hpp"
+#include "compare/bullet_world.hpp"
+#include "core/contact_family.hpp"
+#include "core/error.hpp"
+#include "core/simulator.hpp"
+#include "traditional/backend.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace gacompare;
+
+namespace {
+
+core::Run run(const std::string& backend, const core::Scene& scene) {
+  if (backend == "traditional") return core::simulate<traditional::Backend>(scene);
+  if (backend == "cga") return core::simulate<cga::Backend>(scene);
+  return compare::simulate_bullet(scene);
+}
+
+std::string cell(const core::ContactVerdict& v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s %.2g%s%s", v.pass ? "pass" : "FAIL", v.error, v.unit.empty() ? "" : " ",
+                v.unit.c_str());
+  return buf;
+}
+
+int usage() {
+  std::fprintf(stderr, "usage: contact_table [--filter TEXT] [--backends traditional,cga,bullet] [--max-duration S]\n");
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string filter, command = "contact_table";
+  std::vector<std::string> backends{"traditional", "cga", "bullet"};
+  double max_duration = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (i + 1 >= argc) return usage();
+    const std::string value = argv[++i];
+    command += " " + arg + " " + value;
+    if (arg == "--filter") {
+      filter = value;
+    } else if (arg == "--max-duration") {
+      max_duration = std::atof(value.c_str());
+    } else if (arg == "--backends") {
+      backends.clear();
+      std::stringstream list(value);
+      for (std::string b; std::getline(list, b, ',');) {
+        if (b != "traditional" && b != "cga" && b != "bullet") return usage();
+        backends.push_back(b);
+      }
+    } else {
+      return usage();
+    }
+  }
+
+  std::printf("Command: `build/release/bench/%s`%s\n\n", command.c_str(),
+              max_duration > 0 ? " (every case shortened to the given duration)" : "");
+  std::printf("| case |");
+  for (const auto& b : backends) std::printf(" %s |", b.c_str());
+  std::printf("\n|---|");
+  for (std::size_t k = 0; k < backends.size(); ++k) std::printf("---|");
+  std::printf("\n");
+
+  std::vector<std::string> failures;
+  std::map<std::string, double> wall;
+  std::map<std::string, int> passed;
+  int cases = 0;
+  for (const auto& c : core::contact_family()) {
+    if (c.name.find(filter) == std::string::npos) continue;
+    ++cases;
+    core::Scene scene = c.scene;
+    if (max_duration > 0 && scene.duration > max_duration) scene.duration = max_duration;
+    std::printf("| %s%s |", c.name.c_str(), c.bundled.empty() ? "" : (" (" + c.bundled + ")").c_str());
+    for (const auto& b : backends) {
+      std::fprintf(stderr, "%s %s\n", c.name.c_str(), b.c_str());
+      core::ContactVerdict v;
+      try {
+        const core::Run r = run(b, scene);
+        wall[b] += r.wall_seconds;
+        v = c.evaluate(scene, r);
+      } catch (const Error& e) {
+        v.pass = false, v.error = INFINITY, v.reason = std::string("refused: ") + e.what();
+      }
+      passed[b] += v.pass;
+      std::printf(" %s |", cell(v).c_str());
+      if (!v.pass)
+        failures.push_back(c.name + " (" + b + "): " + v.reason +
+                           (v.first_failure != v.reason ? "; first: " + v.first_failure : ""));
+      std::fflush(stdout);
+    }
+    std::printf("\n");
+  }
+  std::printf("\nPassed:");
+  for (const auto& b : backends) std::printf(" %s %d/%d (%.1f s of runs);", b.c_str(), passed[b], cases, wall[b]);
+  std::printf("\n\nWhy each failure failed (the worst check):\n\n");
+  for (const auto& f : failures) std::printf("- %s\n", f.c_str());
+  return 0;
+}
