@@ -1,0 +1,256 @@
+#include "compare/summary.hpp"
+
+#include "compare/results.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gacompare::compare {
+
+namespace {
+using core::Stage;
+using json = nlohmann::ordered_json;
+
+const BackendResult* find_backend(const SceneResult& r, std::string_view name) {
+  for (const auto& b : r.backends)
+    if (b.run.backend == name) return &b;
+  return nullptr;
+}
+
+std::vector<double> seconds_each_repeat(const BackendResult& b, Stage s) {
+  std::vector<double> v;
+  for (const auto& p : b.profiles) v.push_back(p[s].seconds);
+  return v;
+}
+
+std::uint64_t counter(const core::Run& run, const char* name) {
+  const auto it = run.counters.find(name);
+  return it == run.counters.end() ? 0 : it->second;
+}
+
+// What one unit of a stage's work is, and how many each run did (summary.hpp).
+void set_work(StageTimes& st, const core::Run& trad, const core::Run& cga) {
+  const auto from_counter = [&](const char* unit, const char* name) {
+    st.unit = unit;
+    st.traditional_work = counter(trad, name);
+    st.cga_work = counter(cga, name);
+  };
+  switch (st.stage) {
+    case Stage::narrowphase: from_counter("narrowphase pair", "narrowphase_pairs"); break;
+    case Stage::response: from_counter("impulse", "impulses"); break;
+    case Stage::time_of_impact: from_counter("time-of-impact state", "impact_state_evaluations"); break;
+    case Stage::integrate:
+      st.unit = "solver step";
+      st.traditional_work = trad.solver.steps_accepted + trad.solver.steps_rejected;
+      st.cga_work = cga.solver.steps_accepted + cga.solver.steps_rejected;
+      break;
+    default: break;
+  }
+  if (st.traditional_work == 0 || st.cga_work == 0) {  // no such counter: the stage's own calls
+    st.unit = st.stage == Stage::forces ? "derivative evaluation"
+              : st.stage == Stage::broadphase ? "detection"
+                                              : "call";
+    st.traditional_work = trad.profile[st.stage].calls;
+    st.cga_work = cga.profile[st.stage].calls;
+  }
+}
+
+json interval_json(const Aggregate& a) {
+  return {{"ratio", a.ratio.ratio},
+          {"ci95", json::array({a.ratio.lo, a.ratio.hi})},
+          {"verdict", to_string(a.verdict)},
+          {"scenes", a.scenes},
+          {"traditional_seconds", a.traditional_seconds},
+          {"cga_seconds", a.cga_seconds}};
+}
+}  // namespace
+
+const char* to_string(Category c) {
+  switch (c) {
+    case Category::particles: return "particles";
+    case Category::rigid_bodies: return "rigid bodies";
+    case Category::collisions: return "collisions";
+  }
+  return "?";
+}
+
+Category category_of(const core::Scene& scene) {
+  if (scene.find_effect<core::Collisions>()) return Category::collisions;
+  return scene.bodies.empty() ? Category::particles : Category::rigid_bodies;
+}
+
+Tolerance agreement_tolerance(const core::Scene& scene) {
+  Tolerance t{scene.check.max_divergence, "check.max_divergence"};
+  if (const auto* c = scene.find_effect<core::Collisions>(); c && c->penetration_tolerance < t.metres)
+    t = {c->penetration_tolerance, "penetration tolerance"};
+  return t;
+}
+
+const char* to_string(Trajectories t) {
+  switch (t) {
+    case Trajectories::identical: return "identical";
+    case Trajectories::agree: return "agree";
+    case Trajectories::parted: return "parted (chaotic)";
+    case Trajectories::not_compared: return "not compared";
+  }
+  return "?";
+}
+
+Trajectories classify(double position_divergence, double orientation_divergence, const Tolerance& tol) {
+  if (position_divergence == 0 && orientation_divergence == 0) return Trajectories::identical;
+  // NaN (a blown-up run) is not agreement.
+  return position_divergence <= tol.metres ? Trajectories::agree : Trajectories::parted;
+}
+
+SceneSummary summarise_scene(const SceneResult& r) {
+  SceneSummary s;
+  s.name = r.scene.name;
+  s.category = category_of(r.scene);
+  s.tolerance = agreement_tolerance(r.scene);
+  s.bodies = !r.scene.bodies.empty();
+  const BackendResult* trad = find_backend(r, "traditional");
+  const BackendResult* cga = find_backend(r, "cga");
+  if (!trad || !cga) {
+    s.not_compared_why = "needs both traditional and cga";
+    return s;
+  }
+  s.divergence = max_divergence(r);
+  s.orientation_divergence = max_orientation_divergence(r);
+  for (const auto* b : {trad, cga})
+    if (b->run.error) s.not_compared_why = b->run.backend + " stopped early";
+  s.trajectories = s.not_compared_why.empty() ? classify(s.divergence, s.orientation_divergence, s.tolerance)
+                                              : Trajectories::not_compared;
+  for (int k = 0; k < core::kStageCount; ++k) {
+    const auto stage = static_cast<Stage>(k);
+    if (!trad->run.profile.ran(stage) && !cga->run.profile.ran(stage)) continue;
+    StageTimes st;
+    st.stage = stage;
+    st.seconds = {seconds_each_repeat(*cga, stage), seconds_each_repeat(*trad, stage)};
+    set_work(st, trad->run, cga->run);
+    s.stages.push_back(std::move(st));
+  }
+  return s;
+}
+
+PairedRepeats per_unit_of_work(const StageTimes& s) {
+  PairedRepeats out = s.seconds;
+  if (s.traditional_work == 0 || s.cga_work == 0) return out;
+  const double scale = static_cast<double>(s.traditional_work) / static_cast<double>(s.cga_work);
+  for (auto& x : out.cga) x *= scale;
+  return out;
+}
+
+PairedRepeats compared_seconds(const SceneSummary& s, std::optional<core::Stage> stage) {
+  PairedRepeats out;
+  if (s.trajectories == Trajectories::not_compared) return out;
+  for (const auto& st : s.stages) {
+    if (stage && st.stage != *stage) continue;
+    const PairedRepeats p = s.trajectories == Trajectories::parted ? per_unit_of_work(st) : st.seconds;
+    const std::size_t n = p.pairs();
+    out.cga.resize(std::max(out.cga.size(), n));
+    out.traditional.resize(std::max(out.traditional.size(), n));
+    for (std::size_t i = 0; i < n; ++i) out.cga[i] += p.cga[i], out.traditional[i] += p.traditional[i];
+  }
+  return out;
+}
+
+RatioInterval scene_ratio(const SceneSummary& s, std::optional<core::Stage> stage) {
+  const PairedRepeats data[] = {compared_seconds(s, stage)};
+  return bootstrap_ratio(data);
+}
+
+Aggregate aggregate(const std::vector<SceneSummary>& scenes, Category c, std::optional<core::Stage> stage) {
+  Aggregate a;
+  std::vector<PairedRepeats> data;
+  for (const auto& s : scenes) {
+    if (s.category != c) continue;
+    PairedRepeats p = compared_seconds(s, stage);
+    const std::size_t n = p.pairs();
+    double sc = 0, st = 0;
+    for (std::size_t i = 0; i < n; ++i) sc += p.cga[i], st += p.traditional[i];
+    if (n == 0 || st <= 0) continue;
+    a.cga_seconds += sc / static_cast<double>(n);
+    a.traditional_seconds += st / static_cast<double>(n);
+    ++a.scenes;
+    data.push_back(std::move(p));
+  }
+  a.ratio = bootstrap_ratio(data);
+  a.verdict = speed_verdict(a.ratio);
+  return a;
+}
+
+nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, const MachineInfo& machine,
+                                    int repeats) {
+  json scene_list = json::array();
+  for (const auto& s : scenes) {
+    json j = {{"name", s.name},
+              {"category", to_string(s.category)},
+              {"evidence", is_evidence(s.category)},
+              {"trajectories", to_string(s.trajectories)},
+              {"max_position_difference", s.divergence},
+              {"tolerance", s.tolerance.metres},
+              {"tolerance_source", s.tolerance.source}};
+    if (s.bodies) j["max_orientation_difference_rad"] = s.orientation_divergence;
+    if (s.trajectories == Trajectories::not_compared) {
+      j["not_compared"] = s.not_compared_why;
+    } else {
+      const bool parted = s.trajectories == Trajectories::parted;
+      j["compared"] = parted ? "per unit of work" : "whole run";
+      const RatioInterval r = scene_ratio(s, std::nullopt);
+      j["ratio"] = r.ratio;
+      j["ci95"] = json::array({r.lo, r.hi});
+      j["verdict"] = to_string(speed_verdict(r));
+      if (parted) {
+        json work = json::object();
+        for (const auto& st : s.stages)
+          work[std::string(core::stage_name(st.stage))] = {
+              {"unit", st.unit}, {"traditional", st.traditional_work}, {"cga", st.cga_work}};
+        j["work"] = work;
+      }
+    }
+    scene_list.push_back(j);
+  }
+  json categories = json::object();
+  for (const Category c : kCategories) {
+    const Aggregate overall = aggregate(scenes, c, std::nullopt);
+    if (overall.scenes == 0) continue;
+    json names = json::array();
+    for (const auto& s : scenes)
+      if (s.category == c) names.push_back(s.name);
+    json stages = json::object();
+    for (int k = 0; k < core::kStageCount; ++k) {
+      const auto stage = static_cast<Stage>(k);
+      const Aggregate a = aggregate(scenes, c, stage);
+      if (a.scenes > 0) stages[std::string(core::stage_name(stage))] = interval_json(a);
+    }
+    categories[to_string(c)] = {{"evidence", is_evidence(c)},
+                                {"scenes", names},
+                                {"overall", interval_json(overall)},
+                                {"stages", stages}};
+  }
+  return {{"tool", {{"name", "gacompare"}, {"version", tool_version()}}},
+          {"machine",
+           {{"cpu", machine.cpu}, {"compiler", machine.compiler}, {"date", machine.date},
+            {"build_type", machine.build_type}}},
+          {"repeats", repeats},
+          {"method",
+           {{"ratio",
+             "time-weighted cga/traditional: the sum over a category's scenes of the mean cga seconds per repeat "
+             "over the sum of the mean traditional seconds; where trajectories parted, each stage's cga time is "
+             "scaled to the traditional run's work (seconds x traditional units / cga units)"},
+            {"ci95",
+             "95% bootstrap interval over paired repeats, resampled within each scene, cga repeat i kept with "
+             "traditional repeat i; expanded percentile interval (Hesterberg 2015): the k-th smallest and largest "
+             "resampled ratio, k = floor(tail x resamples), tail = Phi(-sqrt(n/(n-1)) t(0.975, n-1)) for n repeats"},
+            {"resamples", kBootstrapResamples},
+            {"seed", kBootstrapSeed},
+            {"tail", repeats >= 2 ? json(expanded_tail(repeats)) : json(nullptr)},
+            {"verdict", "\"within noise\" when ci95 contains 1, else \"cga faster\" or \"cga slower\""},
+            {"agreement",
+             "positions within the scene's check.max_divergence, and on a collision scene within its "
+             "penetration tolerance; parted otherwise"}}},
+          {"scenes", scene_list},
+          {"categories", categories}};
+}
+
+}  // namespace gacompare::compare

@@ -1,0 +1,99 @@
+#pragma once
+// The multi-scene summary's numbers (DIR/summary.json, and the verdict of the
+// summary report.md/.html): cga/traditional per category and stage, weighted by
+// time, with a bootstrap interval over paired repeats (compare/stats.hpp); each
+// scene's agreement against its own tolerance; runs whose trajectories part
+// compared per call.
+#include "compare/machine.hpp"
+#include "compare/runner.hpp"
+#include "compare/stats.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gacompare::compare {
+
+// particles: scenes with no bodies. Both backends run the same formulas,
+// written once over an algebra policy (a Cl(3,0) vector is a 3-vector), with
+// bit-identical trajectories: reported, not counted as evidence either way.
+// rigid_bodies: bodies, without the collisions effect. collisions: the effect listed.
+enum class Category { particles, rigid_bodies, collisions };
+inline constexpr Category kCategories[] = {Category::rigid_bodies, Category::collisions, Category::particles};
+const char* to_string(Category c);
+Category category_of(const core::Scene& scene);
+inline bool is_evidence(Category c) { return c != Category::particles; }
+
+// The largest distance between the backends' positions the summary may call
+// agreement: the scene's check.max_divergence, and on a collision scene no more
+// than its penetration tolerance (further apart, the backends resolve different
+// contacts: a check allowance set wider, like bodies_in_box's 1.3 m "bounded by
+// the box", bounds how far they may part, not how well they agree).
+struct Tolerance {
+  double metres = 0;
+  std::string source;  // "check.max_divergence" or "penetration tolerance"
+};
+Tolerance agreement_tolerance(const core::Scene& scene);
+
+// identical: every sampled position and orientation equal, bit for bit;
+// agree: positions within the tolerance; parted: further apart (chaos
+// amplifies rounding: the runs then do different work and are compared per
+// call); not_compared: not both traditional and cga ran to the end.
+enum class Trajectories { identical, agree, parted, not_compared };
+const char* to_string(Trajectories t);
+Trajectories classify(double position_divergence, double orientation_divergence, const Tolerance& tol);
+
+// One stage of one scene: seconds per repeat of each backend, and what one
+// unit of its work is, counted in each backend's run: "narrowphase pair"
+// (counter narrowphase_pairs), "impulse" (impulses), "time-of-impact state"
+// (impact_state_evaluations), "solver step" (steps accepted + rejected) for
+// integrate, else the stage's own calls (a derivative evaluation for forces, a
+// detection for broadphase).
+struct StageTimes {
+  core::Stage stage{};
+  PairedRepeats seconds;
+  std::string unit;
+  std::uint64_t traditional_work = 0, cga_work = 0;
+};
+
+struct SceneSummary {
+  std::string name;
+  Category category{};
+  Tolerance tolerance;
+  double divergence = 0, orientation_divergence = 0;  // m, rad: largest over samples
+  bool bodies = false;
+  Trajectories trajectories = Trajectories::not_compared;
+  std::string not_compared_why;  // set when trajectories == not_compared
+  std::vector<StageTimes> stages;  // every stage either backend ran
+};
+SceneSummary summarise_scene(const SceneResult& r);
+
+// The cga time scaled to the traditional run's work: seconds × traditional_work
+// / cga_work, i.e. the time per unit of work compared. Unscaled when either
+// count is 0.
+PairedRepeats per_unit_of_work(const StageTimes& s);
+// The times the summary compares for one stage (every stage when `stage` is
+// empty, summed per repeat): as measured, or per unit of work where the
+// trajectories parted. Empty when the scene is not compared or lacks the stage.
+PairedRepeats compared_seconds(const SceneSummary& s, std::optional<core::Stage> stage);
+
+// One scene's ratio of compared_seconds with its interval.
+RatioInterval scene_ratio(const SceneSummary& s, std::optional<core::Stage> stage);
+
+// One category's ratio at one stage (or all stages), over its compared scenes.
+struct Aggregate {
+  int scenes = 0;
+  double traditional_seconds = 0, cga_seconds = 0;  // Σ over scenes of the mean per repeat (cga per call where parted)
+  RatioInterval ratio;
+  Speed verdict = Speed::unknown;
+};
+Aggregate aggregate(const std::vector<SceneSummary>& scenes, Category c, std::optional<core::Stage> stage);
+
+// DIR/summary.json: {"tool", "machine", "repeats", "method": {how the ratios
+// and intervals are computed}, "scenes": [...], "categories": {name: {"evidence",
+// "scenes", "overall": {"ratio", "ci95", "verdict", ...}, "stages": {...}}}}.
+nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, const MachineInfo& machine, int repeats);
+
+}  // namespace gacompare::compare

@@ -1,0 +1,120 @@
+// The summary's rules (compare/summary.hpp) against answers computed by hand:
+// categories, agreement tolerances, runs compared per unit of work, the
+// time-weighted aggregate per category and summary.json.
+#include "compare/summary.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace gacompare;
+using namespace gacompare::compare;
+
+namespace {
+
+// Times are sums and quotients of a few doubles: 1e-12 relative covers their rounding.
+constexpr double kRounding = 1e-12;
+
+}  // namespace
+
+TEST(Summary, CategoriesFromTheScene) {
+  core::Scene s;
+  EXPECT_EQ(category_of(s), Category::particles);
+  s.bodies.push_back({});
+  EXPECT_EQ(category_of(s), Category::rigid_bodies);
+  s.effects.push_back(core::Collisions{});
+  EXPECT_EQ(category_of(s), Category::collisions);
+  EXPECT_FALSE(is_evidence(Category::particles));
+  EXPECT_TRUE(is_evidence(Category::rigid_bodies));
+}
+
+TEST(Summary, AgreementToleranceIsTheCheckCappedByThePenetrationTolerance) {
+  core::Scene s;
+  EXPECT_EQ(agreement_tolerance(s).metres, 1e-6);  // CheckSpec's default
+  s.check.max_divergence = 1.3;                     // bodies_in_box: "bounded by the box"
+  EXPECT_EQ(agreement_tolerance(s).metres, 1.3);    // no contacts: the check is the tolerance
+  core::Collisions c;
+  c.penetration_tolerance = 1e-4;
+  s.effects.push_back(c);
+  EXPECT_EQ(agreement_tolerance(s).metres, 1e-4);
+  EXPECT_EQ(agreement_tolerance(s).source, "penetration tolerance");
+  s.check.max_divergence = 1e-6;
+  EXPECT_EQ(agreement_tolerance(s).metres, 1e-6);
+  EXPECT_EQ(agreement_tolerance(s).source, "check.max_divergence");
+}
+
+TEST(Summary, TrajectoriesAgainstTheTolerance) {
+  const Tolerance tol{1e-4, "penetration tolerance"};
+  EXPECT_EQ(classify(0, 0, tol), Trajectories::identical);
+  EXPECT_EQ(classify(0, 1e-9, tol), Trajectories::agree);
+  EXPECT_EQ(classify(1e-4, 0, tol), Trajectories::agree);
+  EXPECT_EQ(classify(1.19, 3.1, tol), Trajectories::parted);
+  EXPECT_EQ(classify(NAN, 0, tol), Trajectories::parted);
+  EXPECT_STREQ(to_string(Trajectories::parted), "parted (chaotic)");
+}
+
+namespace {
+// A collision scene at two stages, two repeats: narrowphase (trad 100 pairs,
+// cga 200) and response (trad 10 impulses, cga 5).
+SceneSummary two_stage_scene(Trajectories t) {
+  SceneSummary s;
+  s.name = "box";
+  s.category = Category::collisions;
+  s.trajectories = t;
+  s.stages.push_back({core::Stage::narrowphase, {{4, 4}, {1, 1}}, "narrowphase pair", 100, 200});
+  s.stages.push_back({core::Stage::response, {{1, 5}, {2, 2}}, "impulse", 10, 5});
+  return s;
+}
+}  // namespace
+
+TEST(Summary, PartedRunsAreComparedPerUnitOfWork) {
+  // Per unit of work: narrowphase cga 4 s × 100/200 = 2 s against 1 s (2);
+  // response cga (1, 5) × 10/5 = (2, 10) against 2 s (mean 6 over 2: 3). All
+  // stages: cga (4, 12) against (3, 3): 8/3. As measured: narrowphase 4,
+  // response 3/2, all stages (5, 9) against (3, 3): 7/3.
+  const SceneSummary parted = two_stage_scene(Trajectories::parted);
+  EXPECT_EQ(per_unit_of_work(parted.stages[0]).cga, (std::vector<double>{2, 2}));
+  EXPECT_NEAR(scene_ratio(parted, core::Stage::narrowphase).ratio, 2.0, kRounding);
+  EXPECT_NEAR(scene_ratio(parted, core::Stage::response).ratio, 3.0, kRounding);
+  EXPECT_EQ(compared_seconds(parted, std::nullopt).cga, (std::vector<double>{4, 12}));
+  EXPECT_NEAR(scene_ratio(parted, std::nullopt).ratio, 8.0 / 3.0, kRounding);
+
+  const SceneSummary agreed = two_stage_scene(Trajectories::agree);
+  EXPECT_NEAR(scene_ratio(agreed, core::Stage::narrowphase).ratio, 4.0, kRounding);
+  EXPECT_NEAR(scene_ratio(agreed, core::Stage::response).ratio, 1.5, kRounding);
+  EXPECT_EQ(compared_seconds(agreed, std::nullopt).cga, (std::vector<double>{5, 9}));
+  EXPECT_NEAR(scene_ratio(agreed, std::nullopt).ratio, 7.0 / 3.0, kRounding);
+
+  SceneSummary unrun = two_stage_scene(Trajectories::not_compared);
+  EXPECT_EQ(compared_seconds(unrun, std::nullopt).pairs(), 0u);
+}
+
+TEST(Summary, AggregateIsPerCategoryAndTimeWeighted) {
+  // Two collision scenes and a particle scene: the collision aggregate at all
+  // stages is the mean cga (5 + 9)/2 + 1 = 8 over 3 + 1 = 4: 2, where the
+  // scenes' own ratios are 7/3 and 1; the particle scene stays out.
+  std::vector<SceneSummary> scenes = {two_stage_scene(Trajectories::agree), two_stage_scene(Trajectories::agree)};
+  scenes[1].stages = {{core::Stage::narrowphase, {{1, 1}, {1, 1}}, "narrowphase pair", 1, 1}};
+  SceneSummary particles;
+  particles.category = Category::particles;
+  particles.trajectories = Trajectories::identical;
+  particles.stages = {{core::Stage::forces, {{50, 50}, {1, 1}}, "derivative evaluation", 1, 1}};
+  scenes.push_back(particles);
+  const Aggregate a = aggregate(scenes, Category::collisions, std::nullopt);
+  EXPECT_EQ(a.scenes, 2);
+  EXPECT_NEAR(a.cga_seconds, 8.0, kRounding);
+  EXPECT_NEAR(a.traditional_seconds, 4.0, kRounding);
+  EXPECT_NEAR(a.ratio.ratio, 2.0, kRounding);
+  const Aggregate n = aggregate(scenes, Category::collisions, core::Stage::narrowphase);
+  EXPECT_NEAR(n.ratio.ratio, 5.0 / 2.0, kRounding);  // (4 + 1) over (1 + 1)
+  EXPECT_EQ(aggregate(scenes, Category::rigid_bodies, std::nullopt).scenes, 0);
+  EXPECT_EQ(aggregate(scenes, Category::particles, std::nullopt).verdict, Speed::cga_slower);
+
+  const nlohmann::ordered_json j = summary_json(scenes, MachineInfo{}, 2);
+  EXPECT_EQ(j["method"]["resamples"], kBootstrapResamples);
+  EXPECT_NEAR(j["categories"]["collisions"]["overall"]["ratio"].get<double>(), 2.0, kRounding);
+  EXPECT_EQ(j["categories"]["collisions"]["overall"]["ci95"].size(), 2u);
+  EXPECT_TRUE(j["categories"]["collisions"]["evidence"].get<bool>());
+  EXPECT_FALSE(j["categories"]["particles"]["evidence"].get<bool>());
+  EXPECT_FALSE(j["categories"].contains("rigid bodies"));
+}
