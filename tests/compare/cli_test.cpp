@@ -79,16 +79,47 @@ TEST(Cli, CompareWritesResultsAndReportForBothBackends) {
 
 TEST(Cli, SeveralScenesGetOneFolderEachAndASummary) {
   const fs::path out = fresh_dir("many");
-  const std::string other = std::string(GACOMPARE_DATA_DIR) + "/scenes/falling_quadratic_drag.json";
-  const Result r = gacompare("compare " + kScene + " " + other + " --repeat 1 --quiet --out " + out.string());
+  const std::string data = std::string(GACOMPARE_DATA_DIR) + "/scenes/";
+  const Result r = gacompare("compare " + kScene + " " + data + "falling_quadratic_drag.json " + data +
+                             "elastic_pair.json --repeat 2 --quiet --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(out / "projectile_linear_drag" / "results.json"));
   EXPECT_TRUE(fs::exists(out / "falling_quadratic_drag" / "report.md"));
   const std::string md = read_text(out / "report.md");
   EXPECT_NE(md.find("projectile_linear_drag"), std::string::npos);
-  EXPECT_NE(md.find("by stage, across scenes"), std::string::npos) << md;
-  EXPECT_NE(md.find("**Verdict, from these numbers:** across 2 scenes"), std::string::npos) << md;
   EXPECT_NE(md.find("falling_quadratic_drag"), std::string::npos);
+  EXPECT_NE(md.find("## cga / traditional by category and stage"), std::string::npos) << md;
+  EXPECT_NE(md.find("| collisions | **all stages** | 1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| particles (not evidence) | **all stages** | 2 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("**Verdict, from these numbers:** collisions (1 scene): "), std::string::npos) << md;
+  EXPECT_NE(md.find("with 2 repeats the intervals hold the true ratio well under 95%"), std::string::npos) << md;
+  EXPECT_NE(read_text(out / "report.html").find("<h2>cga / traditional by category and stage</h2>"),
+            std::string::npos);
+
+  // summary.json: the same numbers, per category and stage, with intervals.
+  const json j = read_json(out / "summary.json");
+  EXPECT_EQ(j["repeats"], 2);
+  EXPECT_EQ(j["method"]["resamples"].get<int>(), 20000);
+  ASSERT_EQ(j["scenes"].size(), 3u);
+  for (const auto& s : j["scenes"]) {
+    EXPECT_EQ(s["ci95"].size(), 2u) << s;
+    EXPECT_LE(s["ci95"][0].get<double>(), s["ratio"].get<double>()) << s;
+    EXPECT_GE(s["ci95"][1].get<double>(), s["ratio"].get<double>()) << s;
+  }
+  EXPECT_EQ(j["scenes"][0]["category"], "particles");
+  EXPECT_EQ(j["scenes"][0]["trajectories"], "identical");  // the same code in both backends
+  EXPECT_EQ(j["scenes"][2]["category"], "collisions");
+  EXPECT_EQ(j["scenes"][2]["tolerance"].get<double>(), 1e-6);  // CheckSpec's default
+  const json& particles = j["categories"]["particles"];
+  EXPECT_FALSE(particles["evidence"].get<bool>());
+  EXPECT_EQ(particles["scenes"].size(), 2u);
+  EXPECT_TRUE(particles["stages"].contains("forces"));
+  const json& collisions = j["categories"]["collisions"];
+  EXPECT_TRUE(collisions["evidence"].get<bool>());
+  EXPECT_TRUE(collisions["stages"].contains("narrowphase"));
+  EXPECT_EQ(collisions["overall"]["ci95"].size(), 2u);
+  const std::string verdict = collisions["overall"]["verdict"];
+  EXPECT_TRUE(verdict == "within noise" || verdict == "cga faster" || verdict == "cga slower") << verdict;
 }
 
 TEST(Cli, RunUsesOneBackend) {
