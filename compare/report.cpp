@@ -245,12 +245,11 @@ void category_tables(std::ostringstream& o, const std::vector<SceneSummary>& sce
     << "; the expanded percentile interval, which widens the plain one for few repeats). The verdict is \"within "
        "noise\" whenever the interval contains 1. Particle scenes run the same formulas in both backends (a Cl(3,0) "
        "vector is a 3-vector): reported, not counted as evidence.\n\n";
-  if (repeats < 5)
+  if (repeats < static_cast<int>(kMinRepeatsForInterval))
     o << "**Note:** with " << repeats << " repeat" << (repeats == 1 ? "" : "s")
-      << (repeats == 1 ? " there is no interval and no verdict"
-                       : " the intervals hold the true ratio well under 95% of the time (no resample reaches "
-                         "beyond the most extreme repeat)")
-      << ": use `--repeat 5` or more.\n\n";
+      << " there is no interval and so no verdict: a bootstrap interval from fewer than " << kMinRepeatsForInterval
+      << " repeats holds the true ratio well under 95% of the time. Use `--repeat " << kMinRepeatsForInterval
+      << "` or more.\n\n";
   o << "| category | stage | scenes | traditional | cga | cga / traditional [95% CI] | verdict |\n"
     << "|---|---|---:|---:|---:|---:|---|\n";
   for (const Category c : kCategories) {
@@ -319,12 +318,14 @@ void verdict(std::ostringstream& o, const std::vector<SceneSummary>& scenes) {
 
   int identical = 0, agree = 0;
   const SceneSummary* closest = nullptr;  // the agreeing scene nearest its tolerance
+  const SceneSummary* turned = nullptr;   // the largest angle between orientations outside parted scenes
   std::vector<std::string> parted, not_compared;
   for (const auto& s : scenes) {
     if (s.trajectories == Trajectories::identical) ++identical;
     if (s.trajectories == Trajectories::agree) {
       ++agree;
       if (!closest || s.divergence / s.tolerance.metres > closest->divergence / closest->tolerance.metres) closest = &s;
+      if (s.bodies && (!turned || s.orientation_divergence > turned->orientation_divergence)) turned = &s;
     }
     if (s.trajectories == Trajectories::parted) parted.push_back(s.name);
     if (s.trajectories == Trajectories::not_compared) not_compared.push_back(s.name + " (" + s.not_compared_why + ")");
@@ -340,6 +341,10 @@ void verdict(std::ostringstream& o, const std::vector<SceneSummary>& scenes) {
   };
   if (!parted.empty()) o << "; parted (chaotic) on " << list(parted) << ", where no agreement is claimed";
   if (!not_compared.empty()) o << "; not compared on " << list(not_compared);
+  if (turned)
+    o << ". Orientations are bounded by no scene, so no agreement is claimed for them: the largest angle between "
+         "them outside parted scenes is "
+      << fmt("%.1e", turned->orientation_divergence) << " rad (" << turned->name << ")";
   o << ". Coding simplicity is not measured here: compare `traditional/` and `cga/` side by side.\n";
 }
 }  // namespace
@@ -350,7 +355,7 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
   std::ostringstream o;
   o << "# gacompare: " << results.size() << " scenes\n\n" << header(machine, repeats) << "\n";
   o << "| scene | category | traditional | cga | cga / traditional [95% CI] | positions apart (m) | tolerance (m) | "
-       "trajectories | angles apart (rad) | energy change trad / cga |\n"
+       "positions | angles apart (rad) | energy change trad / cga |\n"
     << "|---|---|---:|---:|---:|---:|---:|---|---:|---:|\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     const SceneResult& r = results[i];
@@ -361,9 +366,11 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
     o << "| [" << r.scene.name << "](" << r.scene.name << "/report.md) | " << to_string(s.category) << " | "
       << (trad ? time_cell(total_seconds(*trad)) : "–") << " | " << (cga ? time_cell(total_seconds(*cga)) : "–")
       << " | "
-      << (compared ? interval_cell(scene_ratio(s, std::nullopt)) +
-                         (s.trajectories == Trajectories::parted ? " per unit of work" : "")
-                   : "–")
+      << (!compared ? "–"
+          : s.trajectories == Trajectories::parted
+              ? interval_cell(scene_ratio(s, std::nullopt)) + " per unit of work (whole run " +
+                    interval_cell(scene_ratio(s, std::nullopt, true)) + ")"
+              : interval_cell(scene_ratio(s, std::nullopt)))
       << " | " << (compared ? fmt("%.2e", s.divergence) : "–") << " | " << fmt("%.0e", s.tolerance.metres)
       << (s.tolerance.source == "check.max_divergence" ? "" : " (penetration)") << " | " << to_string(s.trajectories)
       << " | " << (compared && s.bodies ? fmt("%.2e", s.orientation_divergence) : "–") << " | "
@@ -371,8 +378,10 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
       << " |\n";
   }
   o << "\nRatios are of the mean time per repeat, whole run; where the trajectories parted, per unit of each "
-       "stage's work (below). Tolerance: the scene's `check.max_divergence`, or on a collision scene its "
-       "penetration tolerance where that is smaller. No agreement is claimed beyond it.\n";
+       "stage's work (below). Positions apart: particles and bodies' centres of mass, the largest distance over "
+       "all samples. Tolerance: the scene's `check.max_divergence`, or on a collision scene its penetration "
+       "tolerance where that is smaller; no agreement is claimed beyond it, and none for orientations (no scene "
+       "bounds them).\n";
 
   // Physical sanity (compare/sanity.hpp), every warning of every scene, where
   // nobody reading the summary can miss it.

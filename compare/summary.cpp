@@ -89,7 +89,7 @@ Tolerance agreement_tolerance(const core::Scene& scene) {
 const char* to_string(Trajectories t) {
   switch (t) {
     case Trajectories::identical: return "identical";
-    case Trajectories::agree: return "agree";
+    case Trajectories::agree: return "within tolerance";
     case Trajectories::parted: return "parted (chaotic)";
     case Trajectories::not_compared: return "not compared";
   }
@@ -140,12 +140,12 @@ PairedRepeats per_unit_of_work(const StageTimes& s) {
   return out;
 }
 
-PairedRepeats compared_seconds(const SceneSummary& s, std::optional<core::Stage> stage) {
+PairedRepeats compared_seconds(const SceneSummary& s, std::optional<core::Stage> stage, bool as_measured) {
   PairedRepeats out;
   if (s.trajectories == Trajectories::not_compared) return out;
   for (const auto& st : s.stages) {
     if (stage && st.stage != *stage) continue;
-    const PairedRepeats p = s.trajectories == Trajectories::parted ? per_unit_of_work(st) : st.seconds;
+    const PairedRepeats p = s.trajectories == Trajectories::parted && !as_measured ? per_unit_of_work(st) : st.seconds;
     const std::size_t n = p.pairs();
     out.cga.resize(std::max(out.cga.size(), n));
     out.traditional.resize(std::max(out.traditional.size(), n));
@@ -154,9 +154,18 @@ PairedRepeats compared_seconds(const SceneSummary& s, std::optional<core::Stage>
   return out;
 }
 
-RatioInterval scene_ratio(const SceneSummary& s, std::optional<core::Stage> stage) {
-  const PairedRepeats data[] = {compared_seconds(s, stage)};
+namespace {
+// bootstrap_ratio, with no interval below kMinRepeatsForInterval repeats.
+RatioInterval interval(std::span<const PairedRepeats> data) {
+  for (const auto& p : data)
+    if (p.pairs() < kMinRepeatsForInterval) return {time_weighted_ratio(data), NAN, NAN};
   return bootstrap_ratio(data);
+}
+}  // namespace
+
+RatioInterval scene_ratio(const SceneSummary& s, std::optional<core::Stage> stage, bool as_measured) {
+  const PairedRepeats data[] = {compared_seconds(s, stage, as_measured)};
+  return interval(data);
 }
 
 Aggregate aggregate(const std::vector<SceneSummary>& scenes, Category c, std::optional<core::Stage> stage) {
@@ -174,7 +183,7 @@ Aggregate aggregate(const std::vector<SceneSummary>& scenes, Category c, std::op
     ++a.scenes;
     data.push_back(std::move(p));
   }
-  a.ratio = bootstrap_ratio(data);
+  a.ratio = interval(data);
   a.verdict = speed_verdict(a.ratio);
   return a;
 }
@@ -201,6 +210,9 @@ nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, con
       j["ci95"] = json::array({r.lo, r.hi});
       j["verdict"] = to_string(speed_verdict(r));
       if (parted) {
+        const RatioInterval whole = scene_ratio(s, std::nullopt, true);
+        j["whole_run_ratio"] = whole.ratio;
+        j["whole_run_ci95"] = json::array({whole.lo, whole.hi});
         json work = json::object();
         for (const auto& st : s.stages)
           work[std::string(core::stage_name(st.stage))] = {
@@ -244,11 +256,13 @@ nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, con
              "resampled ratio, k = floor(tail x resamples), tail = Phi(-sqrt(n/(n-1)) t(0.975, n-1)) for n repeats"},
             {"resamples", kBootstrapResamples},
             {"seed", kBootstrapSeed},
-            {"tail", repeats >= 2 ? json(expanded_tail(repeats)) : json(nullptr)},
+            {"tail", repeats >= static_cast<int>(kMinRepeatsForInterval) ? json(expanded_tail(repeats)) : json(nullptr)},
+            {"min_repeats", kMinRepeatsForInterval},
             {"verdict", "\"within noise\" when ci95 contains 1, else \"cga faster\" or \"cga slower\""},
             {"agreement",
-             "positions within the scene's check.max_divergence, and on a collision scene within its "
-             "penetration tolerance; parted otherwise"}}},
+             "positions (particles, bodies' centres of mass) within the scene's check.max_divergence, and on a "
+             "collision scene within its penetration tolerance; parted otherwise. Orientations: the largest angle "
+             "is reported, no agreement claimed (no scene bounds it)"}}},
           {"scenes", scene_list},
           {"categories", categories}};
 }

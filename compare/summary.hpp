@@ -38,9 +38,12 @@ struct Tolerance {
 Tolerance agreement_tolerance(const core::Scene& scene);
 
 // identical: every sampled position and orientation equal, bit for bit;
-// agree: positions within the tolerance; parted: further apart (chaos
-// amplifies rounding: the runs then do different work and are compared per
-// call); not_compared: not both traditional and cga ran to the end.
+// agree ("within tolerance"): positions within the tolerance; parted
+// ("parted (chaotic)"): further apart (chaos amplifies the backends' different
+// rounding, as in bodies_in_box: the runs then do different work and are
+// compared per unit of work); not_compared: not both traditional and cga ran
+// to the end. Orientations are not classified: no scene states a tolerance for
+// them, so the summary reports their largest angle and claims nothing.
 enum class Trajectories { identical, agree, parted, not_compared };
 const char* to_string(Trajectories t);
 Trajectories classify(double position_divergence, double orientation_divergence, const Tolerance& tol);
@@ -76,11 +79,17 @@ SceneSummary summarise_scene(const SceneResult& r);
 PairedRepeats per_unit_of_work(const StageTimes& s);
 // The times the summary compares for one stage (every stage when `stage` is
 // empty, summed per repeat): as measured, or per unit of work where the
-// trajectories parted. Empty when the scene is not compared or lacks the stage.
-PairedRepeats compared_seconds(const SceneSummary& s, std::optional<core::Stage> stage);
+// trajectories parted (unless `as_measured`). Empty when the scene is not
+// compared or lacks the stage.
+PairedRepeats compared_seconds(const SceneSummary& s, std::optional<core::Stage> stage, bool as_measured = false);
+
+// The fewest paired repeats for an interval, and so for a verdict: with 5 the
+// expanded interval held the true ratio 91% of the time in the simulation of
+// compare/stats.hpp, with 4 87%, with 3 74%; fewer leave the ratio alone.
+inline constexpr std::size_t kMinRepeatsForInterval = 5;
 
 // One scene's ratio of compared_seconds with its interval.
-RatioInterval scene_ratio(const SceneSummary& s, std::optional<core::Stage> stage);
+RatioInterval scene_ratio(const SceneSummary& s, std::optional<core::Stage> stage, bool as_measured = false);
 
 // One category's ratio at one stage (or all stages), over its compared scenes.
 struct Aggregate {

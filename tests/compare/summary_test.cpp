@@ -51,10 +51,12 @@ TEST(Summary, TrajectoriesAgainstTheTolerance) {
   EXPECT_EQ(classify(1.19, 3.1, tol), Trajectories::parted);
   EXPECT_EQ(classify(NAN, 0, tol), Trajectories::parted);
   EXPECT_STREQ(to_string(Trajectories::parted), "parted (chaotic)");
+  EXPECT_STREQ(to_string(Trajectories::agree), "within tolerance");
 }
 
 namespace {
-// A collision scene at two stages, two repeats: narrowphase (trad 100 pairs,
+// A collision scene at two stages, two repeats (too few for an interval: the
+// ratios below have none): narrowphase (trad 100 pairs,
 // cga 200) and response (trad 10 impulses, cga 5).
 SceneSummary two_stage_scene(Trajectories t) {
   SceneSummary s;
@@ -78,12 +80,16 @@ TEST(Summary, PartedRunsAreComparedPerUnitOfWork) {
   EXPECT_NEAR(scene_ratio(parted, core::Stage::response).ratio, 3.0, kRounding);
   EXPECT_EQ(compared_seconds(parted, std::nullopt).cga, (std::vector<double>{4, 12}));
   EXPECT_NEAR(scene_ratio(parted, std::nullopt).ratio, 8.0 / 3.0, kRounding);
+  EXPECT_NEAR(scene_ratio(parted, std::nullopt, true).ratio, 7.0 / 3.0, kRounding);  // as measured
 
   const SceneSummary agreed = two_stage_scene(Trajectories::agree);
   EXPECT_NEAR(scene_ratio(agreed, core::Stage::narrowphase).ratio, 4.0, kRounding);
   EXPECT_NEAR(scene_ratio(agreed, core::Stage::response).ratio, 1.5, kRounding);
   EXPECT_EQ(compared_seconds(agreed, std::nullopt).cga, (std::vector<double>{5, 9}));
   EXPECT_NEAR(scene_ratio(agreed, std::nullopt).ratio, 7.0 / 3.0, kRounding);
+
+  EXPECT_TRUE(std::isnan(scene_ratio(parted, std::nullopt).lo));  // 2 repeats: no interval
+  EXPECT_EQ(speed_verdict(scene_ratio(parted, std::nullopt)), Speed::unknown);
 
   SceneSummary unrun = two_stage_scene(Trajectories::not_compared);
   EXPECT_EQ(compared_seconds(unrun, std::nullopt).pairs(), 0u);
@@ -108,13 +114,27 @@ TEST(Summary, AggregateIsPerCategoryAndTimeWeighted) {
   const Aggregate n = aggregate(scenes, Category::collisions, core::Stage::narrowphase);
   EXPECT_NEAR(n.ratio.ratio, 5.0 / 2.0, kRounding);  // (4 + 1) over (1 + 1)
   EXPECT_EQ(aggregate(scenes, Category::rigid_bodies, std::nullopt).scenes, 0);
-  EXPECT_EQ(aggregate(scenes, Category::particles, std::nullopt).verdict, Speed::cga_slower);
+  EXPECT_EQ(aggregate(scenes, Category::particles, std::nullopt).verdict, Speed::unknown);  // 2 repeats
 
   const nlohmann::ordered_json j = summary_json(scenes, MachineInfo{}, 2);
   EXPECT_EQ(j["method"]["resamples"], kBootstrapResamples);
   EXPECT_NEAR(j["categories"]["collisions"]["overall"]["ratio"].get<double>(), 2.0, kRounding);
-  EXPECT_EQ(j["categories"]["collisions"]["overall"]["ci95"].size(), 2u);
+  EXPECT_EQ(j["categories"]["collisions"]["overall"]["ci95"].size(), 2u);  // [null, null]: 2 repeats
+  EXPECT_EQ(j["categories"]["collisions"]["overall"]["verdict"], "no verdict");
   EXPECT_TRUE(j["categories"]["collisions"]["evidence"].get<bool>());
   EXPECT_FALSE(j["categories"]["particles"]["evidence"].get<bool>());
   EXPECT_FALSE(j["categories"].contains("rigid bodies"));
+}
+
+TEST(Summary, AnIntervalFromFiveRepeats) {
+  // Five repeats at ratio 2 exactly: interval [2, 2], "cga slower". Four: none.
+  SceneSummary s;
+  s.category = Category::rigid_bodies;
+  s.trajectories = Trajectories::agree;
+  s.stages = {{core::Stage::forces, {{2, 4, 6, 8, 10}, {1, 2, 3, 4, 5}}, "derivative evaluation", 1, 1}};
+  EXPECT_EQ(scene_ratio(s, std::nullopt).lo, 2.0);
+  EXPECT_EQ(aggregate({s}, Category::rigid_bodies, std::nullopt).verdict, Speed::cga_slower);
+  s.stages[0].seconds.cga.pop_back();
+  EXPECT_TRUE(std::isnan(scene_ratio(s, std::nullopt).hi));
+  EXPECT_EQ(aggregate({s}, Category::rigid_bodies, std::nullopt).verdict, Speed::unknown);
 }
