@@ -43,8 +43,14 @@ Layout layout(const RigidBodies::Model& m, std::size_t b) {
   const std::size_t base = b * m.stride, rot = m.rotation == core::Rotation::matrix ? 9 : 4;
   return {base, base + 3, base + 3 + rot, base + 6 + rot};
 }
+// The rotation the state stands for. A quaternion is normalised first, as the
+// cga backend normalises its rotor (one policy, issue #13): Eigen's
+// toRotationMatrix assumes a unit quaternion, so a drifted one gave a matrix
+// that is not a rotation, and ω = R I⁻¹ Rᵀ L a rate off by the drift. The
+// matrix state is used as it is: making it a rotation takes a polar
+// decomposition, and its drift is what renormalise is for.
 Mat rotation(const RigidBodies::Model& m, std::span<const double> y, const Layout& at) {
-  return m.rotation == core::Rotation::matrix ? matrix_at(y, at.rot) : quat_at(y, at.rot).toRotationMatrix();
+  return m.rotation == core::Rotation::matrix ? matrix_at(y, at.rot) : quat_at(y, at.rot).normalized().toRotationMatrix();
 }
 }  // namespace
 
@@ -93,9 +99,12 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     const Vec v = body.inv_mass * P;
     const Mat r = rotation(m, y, at);
     const Vec w = r * (body.inv_inertia * (r.transpose() * L));  // ω = R I⁻¹ Rᵀ L
-    Vec force = body.mass * m.effects.gravity - m.effects.linear_k * v - m.effects.quadratic_k * v.norm() * v;
-    Vec torque = -m.effects.linear_k_angular * w - m.effects.quadratic_k_angular * w.norm() * w;
-    for (const auto& push : m.effects.pushes)
+    const core::BodyEffects& fx = m.effects;
+    Vec force = Vec::Zero(), torque = Vec::Zero();
+    if (fx.has_gravity) force += body.mass * fx.gravity;
+    if (fx.has_linear_drag) force -= fx.linear_k * v, torque -= fx.linear_k_angular * w;
+    if (fx.has_quadratic_drag) force -= fx.quadratic_k * v.norm() * v, torque -= fx.quadratic_k_angular * w.norm() * w;
+    for (const auto& push : fx.pushes)
       if (push.body == b && t >= push.from && t < push.until) {
         force += push.force;
         torque += (r * push.point).cross(push.force);  // τ = (R p) × F
