@@ -50,6 +50,30 @@ class Body {
     return prepared_.at(*this, k).through(l0, l1);
   }
 
+  // The contact manifold's algebra (core/manifold.hpp): points as conformal
+  // points, planes as dual planes with the distance X·π, and where a segment
+  // crosses a plane by the meet of their line and the plane (§1.6).
+  using Point = ConformalPoint;
+  using Plane = DualPlane;
+  const Point& vertex_point(int i) const { return points_[i]; }
+  const Plane& face_plane(int k) const { return planes_[k]; }
+  // The dual plane through X with normal s: X⌋(s ∧ n) = s + (s·x) n, written
+  // out (not unit: clipping reads only signs and ratios).
+  static Plane plane_through(const Point& p, const Vec3& s) {
+    const double d = s.dot(detail::euclid(p));
+    return vector5(s.x(), s.y(), s.z(), d, d);
+  }
+  static double distance(const Plane& f, const Point& p) { return scalar_product(p, f); }
+  // The meet of the line X0 ∧ X1 ∧ n with π (§1.6, as in segment_triangle.hpp):
+  // π⌋(X0 ∧ X1 ∧ n) = (π·X0) X1∧n − (π·X1) X0∧n, the flat point of
+  // d0 X1 − d1 X0 with weight d0 − d1; the clipper has d0 = π·X0 and d1 = π·X1
+  // already, so the meet costs one combination. Its point is lifted again (up):
+  // the combination is a flat point, not a null vector.
+  static Point cut(const Point& p0, double d0, const Point& p1, double d1) {
+    return up(detail::euclid(d0 * p1 - d1 * p0) * (1 / (d0 - d1)));
+  }
+  static Vec3 position(const Point& p) { return detail::euclid(p); }  // up() gives weight 1
+
  private:
   const core::Mesh* mesh_;
   std::vector<ConformalPoint> points_;

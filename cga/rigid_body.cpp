@@ -143,48 +143,68 @@ collision::Pose RigidBodies::pose(const Model& m, std::span<const double> y, std
   return {rotation_matrix(r / std::sqrt(norm2(r))), to_eigen(vec_at(y, at.x))};
 }
 
-// A point carried by the body moves with ṙ = r·Ω (the commutator of eq. 35:
-// d/dt (R r R̃) = ½(r Ω − Ω r) = r⌋Ω for a vector r and a bivector Ω).
-Eigen::Vector3d RigidBodies::velocity_at(const Model& m, std::span<const double> y, std::size_t b,
-                                         const Eigen::Vector3d& p) {
+// The world inverse inertia on bivectors, once per body and response: the
+// rotor's action on the three basis bivectors (three sandwiches) is the
+// orthogonal map S, and I⁻¹_world = S I⁻¹ Sᵀ. A point carried by the body
+// moves with ṙ = r⌋Ω (the commutator of eq. 35: d/dt (R r R̃) = ½(r Ω − Ω r)
+// = r⌋Ω for a vector r and a bivector Ω).
+RigidBodies::Motion RigidBodies::motion(const Model& m, std::span<const double> y, std::size_t b) {
   const Body& body = m.bodies[b];
   const Layout at = layout(b);
   const Rotor3 r = rotor_at(y, at.rot);
-  const Bivector3 omega = sandwich(r, apply(body.inv_inertia, sandwich(reverse(r), biv_at(y, at.l))));
-  const Vector3 arm = vector3(p) - vec_at(y, at.x);
-  return to_eigen(body.inv_mass * vec_at(y, at.p) + (arm | omega));
+  Mat s;
+  for (int k = 0; k < 3; ++k) {
+    Bivector3 e{};
+    e.c[static_cast<std::size_t>(k)] = 1;
+    const Bivector3 turned = sandwich(r, e);
+    s.col(k) = Eigen::Vector3d(turned.c[0], turned.c[1], turned.c[2]);
+  }
+  Motion out;
+  out.x = vec_at(y, at.x);
+  out.inv_mass = body.inv_mass;
+  out.inv_inertia = s * body.inv_inertia * s.transpose();
+  out.v = body.inv_mass * vec_at(y, at.p);
+  out.w = apply(out.inv_inertia, biv_at(y, at.l));  // Ω = R I⁻¹(R̃ L R) R̃
+  return out;
 }
 
-// Eq. 54's term for one body, derived as eq. 53 with bivectors: the angular
-// impulse j r∧n changes Ω by j I⁻¹(r∧n), which moves the point by j r·I⁻¹(r∧n);
-// its component along n is the term: 1/M + n·(r·I⁻¹(r∧n)). (Eq. 54 prints
-// n∧r inside I⁻¹, the negative: with r·(·) on the left its sign must be r∧n
-// for the term to be positive, as the tests against eq. 53 check.)
-double RigidBodies::inverse_effective_mass(const Model& m, std::span<const double> y, std::size_t b,
-                                           const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
-  const Body& body = m.bodies[b];
-  if (body.inv_mass == 0) return 0;
-  const Layout at = layout(b);
-  const Rotor3 r = rotor_at(y, at.rot);
-  const Vector3 arm = vector3(p) - vec_at(y, at.x), nn = vector3(n);
-  const Bivector3 d_omega = sandwich(r, apply(body.inv_inertia, sandwich(reverse(r), arm ^ nn)));
-  return body.inv_mass + scalar_product(nn, arm | d_omega);
+RigidBodies::Arm RigidBodies::arm(const Motion& b, const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
+  const Bivector3 r_n = (vector3(p) - b.x) ^ vector3(n);
+  return {r_n, apply(b.inv_inertia, r_n)};
 }
 
-// P += J, L += r ∧ J.
-void RigidBodies::apply_impulse(const Model& m, std::span<double> y, std::size_t b, const Eigen::Vector3d& p,
-                                const Eigen::Vector3d& impulse) {
+// (The sign: eq. 54 prints n∧r inside I⁻¹; with r·(·) on the left the term is
+// positive only with r∧n, as the tests against eq. 53 check.)
+double RigidBodies::inverse_effective_mass(const Motion& b, const Arm& a) {
+  return b.inv_mass - scalar_product(a.r_n, a.turn);
+}
+
+double RigidBodies::normal_velocity(const Motion& b, const Arm& a, const Eigen::Vector3d& n) {
+  return scalar_product(vector3(n), b.v) - scalar_product(a.r_n, b.w);
+}
+
+void RigidBodies::push(Motion& b, const Arm& a, const Eigen::Vector3d& n, double j) {
+  if (b.inv_mass == 0) return;
+  const Vector3 dj = j * vector3(n);
+  b.v += b.inv_mass * dj;
+  b.w += j * a.turn;
+  b.impulse += dj;
+  b.angular_impulse += j * a.r_n;
+}
+
+void RigidBodies::store(const Model& m, std::span<double> y, std::size_t b, const Motion& motion) {
   if (m.bodies[b].inv_mass == 0) return;
   const Layout at = layout(b);
-  const Vector3 j = vector3(impulse);
-  put(y, at.p, vec_at(y, at.p) + j);
-  put(y, at.l, biv_at(y, at.l) + ((vector3(p) - vec_at(y, at.x)) ^ j));
+  put(y, at.p, vec_at(y, at.p) + motion.impulse);
+  put(y, at.l, biv_at(y, at.l) + motion.angular_impulse);
 }
 
-void RigidBodies::translate(const Model& m, std::span<double> y, std::size_t b, const Eigen::Vector3d& d) {
-  (void)m;
+void RigidBodies::displace(const Model& m, std::span<double> y, std::size_t b, const Motion& pseudo) {
+  if (m.bodies[b].inv_mass == 0) return;
   const Layout at = layout(b);
-  put(y, at.x, vec_at(y, at.x) + vector3(d));
+  put(y, at.x, vec_at(y, at.x) + pseudo.v);
+  if (!(angular_speed(pseudo) > 0)) return;
+  put(y, at.rot, exp(-0.5 * pseudo.w) * rotor_at(y, at.rot));
 }
 
 }  // namespace gacompare::cga

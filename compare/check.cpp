@@ -2,6 +2,7 @@
 
 #include "compare/machine.hpp"
 #include "compare/results.hpp"
+#include "compare/sanity.hpp"
 #include "compare/stats.hpp"
 
 #include <cmath>
@@ -94,6 +95,9 @@ std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlo
     if (spec.max_constraint_violation)
       out.push_back(bound(name, run.backend, "constraint violation (m)", violation, *spec.max_constraint_violation));
     if (spec.max_rotation_drift) out.push_back(bound(name, run.backend, "rotation drift", drift, *spec.max_rotation_drift));
+    // Physical sanity (compare/sanity.hpp): what agreement between backends and
+    // with a baseline cannot see, since both may be wrong the same way.
+    for (auto& l : sanity_checks(r.scene, run)) out.push_back(std::move(l));
   }
   if (r.backends.size() > 1) {
     out.push_back(bound(name, "all", "divergence between backends (m)", max_divergence(r), spec.max_divergence));

@@ -1,6 +1,8 @@
 #include "compare/report.hpp"
 
+#include "compare/check.hpp"
 #include "compare/results.hpp"
+#include "compare/sanity.hpp"
 #include "compare/stats.hpp"
 
 #include <cmath>
@@ -82,6 +84,10 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
 
   for (const auto& b : r.backends)
     if (b.run.error) o << "**" << b.run.backend << " stopped early:** " << *b.run.error << "\n\n";
+  // Physical sanity first: a run that breaks physics must not read as a
+  // timing table with a footnote (the rules: compare/sanity.hpp).
+  const std::vector<CheckLine> sanity = sanity_checks(r);
+  for (const auto& w : sanity_warnings(sanity)) o << "**WARNING, physical sanity:** " << w << "\n\n";
 
   o << "## Stage times\n\n| stage |";
   for (const auto& b : r.backends) o << " " << b.run.backend << " | calls | share |";
@@ -190,6 +196,10 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
          "step's travel, rest poses to the penetration tolerance, and many-body scenes to part as chaos "
          "amplifies the differences.\n";
   }
+  if (!sanity.empty())
+    o << "\n## Physical sanity\n\nThe rules of `gacompare check` that hold for any correct frictionless contact "
+         "response (README, `check`); a failing one is the warning at the top of this report.\n\n"
+      << check_table(sanity);
   if (r.backends.size() > 1) {
     o << "\nLargest distance between the traditional and cga positions over all samples: "
       << fmt("%.3e", max_divergence(r))
@@ -230,6 +240,13 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
       << (trad ? fmt("%.2e", energy_drift(trad->run)) : "–") << " / " << (cga ? fmt("%.2e", energy_drift(cga->run)) : "–")
       << " |\n";
   }
+
+  // Physical sanity (compare/sanity.hpp), every warning of every scene, where
+  // nobody reading the summary can miss it.
+  std::vector<std::string> warnings;
+  for (const auto& r : results)
+    for (const auto& w : sanity_warnings(sanity_checks(r))) warnings.push_back(r.scene.name + ": " + w);
+  for (const auto& w : warnings) o << "\n**WARNING, physical sanity:** " << w << "\n";
 
   // Per stage, across scenes: the median over scenes of each scene's median
   // paired ratio, with the smallest and largest scene's.

@@ -20,6 +20,10 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["impulses"] = impulses;
   out["response_sweeps"] = sweeps;
   out["positional_corrections"] = corrections;
+  out["warm_started_contacts"] = warm_started;
+  out["response_sweep_cap_hits"] = sweep_cap_hits;
+  out["correction_sweep_cap_hits"] = correction_cap_hits;
+  out["unresolved_impacts"] = unresolved_impacts;
 }
 
 CollisionSetup collision_setup(const Scene& scene) {

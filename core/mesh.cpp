@@ -170,6 +170,27 @@ Mesh Mesh::from_triangles(std::string name, std::vector<Vec3> vertices, std::vec
         if (std::min(u, v) == e.first && std::max(u, v) == e.second) m.triangle_edges_[t][k] = index;
       }
   }
+  // Face loops: plane p0 of a feature edge runs it e0 -> e1, plane p1 the other way.
+  std::vector<std::map<int, int>> next(m.planes_.size());
+  std::vector<char> branching(m.planes_.size(), 0);
+  for (std::size_t i = 0; i < m.edges_.size(); ++i) {
+    const auto [e0, e1] = m.edges_[i];
+    const auto [p0, p1] = m.edge_planes_[i];
+    branching[p0] |= !next[p0].emplace(e0, e1).second;
+    branching[p1] |= !next[p1].emplace(e1, e0).second;
+  }
+  m.faces_.resize(m.planes_.size());
+  for (std::size_t p = 0; p < m.planes_.size(); ++p) {
+    if (branching[p] || next[p].size() < 3) continue;
+    std::vector<int>& loop = m.faces_[p];
+    int v = next[p].begin()->first;
+    do {
+      loop.push_back(v);
+      const auto it = next[p].find(v);
+      v = it == next[p].end() ? -1 : it->second;
+    } while (v >= 0 && v != loop.front() && loop.size() <= next[p].size());
+    if (v != loop.front() || loop.size() != next[p].size()) loop.clear();  // not one closed loop
+  }
   m.vertices_ = std::move(vertices);
   m.triangles_ = std::move(triangles);
   return m;

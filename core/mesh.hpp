@@ -55,6 +55,13 @@ class Mesh {
   // Per triangle, the feature edge index of its edge k (vertex k to k+1), or −1
   // for a diagonal inside a polygonal face.
   const std::vector<std::array<int, 3>>& triangle_edges() const { return triangle_edges_; }
+  // Per plane, the face's boundary as a loop of vertex indices, counter-clockwise
+  // seen from outside (the feature edges of that plane, chained). The contact
+  // manifold clips one face against another's (core/manifold.hpp). A planar face
+  // of a convex mesh is one convex polygon, so its loop is always there; a face
+  // whose boundary is not one loop (a non-convex mesh's face with a hole) gets
+  // an empty loop, and such meshes never reach the convex narrowphase.
+  const std::vector<std::vector<int>>& faces() const { return faces_; }
   double size() const { return size_; }  // bounding-box diagonal: the length scale of tolerances
 
   // The same solid moved rigidly: x -> R x + t (R a rotation).
@@ -70,6 +77,7 @@ class Mesh {
   std::vector<int> triangle_plane_;
   std::vector<std::array<int, 2>> edges_, edge_planes_;
   std::vector<std::array<int, 3>> triangle_edges_;
+  std::vector<std::vector<int>> faces_;
   double size_ = 0;
 };
 

@@ -495,9 +495,15 @@ class Loader {
       });
       return a;
     }
-    static constexpr Keys<5> keys = {"type", "restitution", "penetration_tolerance", "step", "time_of_impact"};
+    static constexpr Keys<6> keys = {"type", "restitution", "penetration_tolerance", "step", "time_of_impact", "method"};
     Obj o(v, keys);
     Collisions c;
+    if (auto x = o.opt("method")) {
+      const std::string m = str(*x);
+      if (m == "manifold") c.method = ContactMethod::manifold;
+      else if (m == "report") c.method = ContactMethod::report;
+      else x->expected("\"manifold\" or \"report\"");
+    }
     if (auto x = o.opt("step")) c.step = number(*x, Range::positive);
     if (auto x = o.opt("time_of_impact")) {
       const std::string m = str(*x);

@@ -45,12 +45,19 @@ struct AttractionToPoint { Vec3 point{0, 0, 0}; double D = 0; double softening =
 //     than half its inradius in one interval (no tunnelling).
 //   time_of_impact: "bisection" (§2.5.1, the report's) or "illinois" (a
 //     bracketing root finder on the separating-axis depth, §4.3's future work).
+//   method: how contacts are found once the separating-axis test says a pair
+//     touches: "manifold" (default; the reference face clipped against the
+//     incident face along the axis of minimum penetration, core/manifold.hpp)
+//     or "report" (fig. 7's vertex-in-body and edge-through-face detector,
+//     which misses faces meeting faces: kept to compare with).
 enum class TimeOfImpact { bisection, illinois };
+enum class ContactMethod { manifold, report };
 struct Collisions {
   double restitution = 0.5;
   double penetration_tolerance = 1e-4;
   double step = 1e-3;
   TimeOfImpact time_of_impact = TimeOfImpact::bisection;
+  ContactMethod method = ContactMethod::manifold;
 };
 // Forces applied at points of bodies (§2.3.1: L̇ = τ): each pushes body `body` at
 // `point` (body coordinates, from the centre of mass) with `force` (world, N)

@@ -118,7 +118,7 @@ struct Simulation {
         t = t_star;
         d = c.detect(m.bodies, bodies(y), inner);
       }
-      if (!d.hits.empty()) c.respond(m.bodies, bodies(y), d, profile);
+      if (!d.hits.empty()) c.respond(m.bodies, bodies(y), d, t - t0, profile);
     }
   }
   static std::size_t state_size(const Model& m) { return m.offset + Bodies::state_size(m.bodies); }

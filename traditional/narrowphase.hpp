@@ -46,6 +46,20 @@ class Body {
     return prepared_.at(*this, k).through(l0, l1);
   }
 
+  // The contact manifold's algebra (core/manifold.hpp): points as 3-vectors,
+  // planes as (normal, offset) with the distance n·x − d, and where a segment
+  // crosses a plane by the line–plane intersection.
+  using Point = Vec3;
+  using Plane = core::Plane;
+  const Point& vertex_point(int i) const { return vertices_[i]; }
+  const Plane& face_plane(int k) const { return planes_[k]; }
+  // The plane through p with normal s (not unit: clipping reads only signs and ratios).
+  static Plane plane_through(const Point& p, const Vec3& s) { return {s, s.dot(p)}; }
+  static double distance(const Plane& f, const Point& p) { return f.distance(p); }
+  // The segment p0–p1 crosses the plane where the distances d0, d1 interpolate to 0.
+  static Point cut(const Point& p0, double d0, const Point& p1, double d1) { return p0 + (d0 / (d0 - d1)) * (p1 - p0); }
+  static Vec3 position(const Point& p) { return p; }
+
  private:
   const core::Mesh* mesh_;
   std::vector<Vec3> vertices_;

@@ -175,37 +175,56 @@ collision::Pose RigidBodies::pose(const Model& m, std::span<const double> y, std
   return {rotation(m, y, at), vec_at(y, at.x)};
 }
 
-// ω = R I⁻¹ Rᵀ L (eq. 31 as corrected above); ṗ = v + ω × r (eq. 47).
-Vec RigidBodies::velocity_at(const Model& m, std::span<const double> y, std::size_t b, const Vec& p) {
+RigidBodies::Motion RigidBodies::motion(const Model& m, std::span<const double> y, std::size_t b) {
   const Body& body = m.bodies[b];
   const Layout at = layout(m, b);
   const Mat r = rotation(m, y, at);
-  const Vec w = r * (body.inv_inertia * (r.transpose() * vec_at(y, at.l)));
-  return body.inv_mass * vec_at(y, at.p) + w.cross(p - vec_at(y, at.x));
+  Motion out;
+  out.x = vec_at(y, at.x);
+  out.inv_mass = body.inv_mass;
+  out.inv_inertia = r * body.inv_inertia * r.transpose();
+  out.v = body.inv_mass * vec_at(y, at.p);
+  out.w = out.inv_inertia * vec_at(y, at.l);  // ω = R I⁻¹ Rᵀ L
+  return out;
 }
 
-// Eq. 53's term for one body: 1/M + n·((I⁻¹(r × n)) × r).
-double RigidBodies::inverse_effective_mass(const Model& m, std::span<const double> y, std::size_t b, const Vec& p,
-                                           const Vec& n) {
-  const Body& body = m.bodies[b];
-  if (body.inv_mass == 0) return 0;
-  const Layout at = layout(m, b);
-  const Mat r = rotation(m, y, at);
-  const Vec arm = p - vec_at(y, at.x);
-  return body.inv_mass + n.dot((r * (body.inv_inertia * (r.transpose() * arm.cross(n)))).cross(arm));
+RigidBodies::Arm RigidBodies::arm(const Motion& b, const Vec& p, const Vec& n) {
+  const Vec r_n = (p - b.x).cross(n);
+  return {r_n, b.inv_inertia * r_n};
 }
 
-// Eq. 48–49 on the stored momenta: P += J, L += r × J.
-void RigidBodies::apply_impulse(const Model& m, std::span<double> y, std::size_t b, const Vec& p, const Vec& impulse) {
+double RigidBodies::inverse_effective_mass(const Motion& b, const Arm& a) { return b.inv_mass + a.r_n.dot(a.turn); }
+
+double RigidBodies::normal_velocity(const Motion& b, const Arm& a, const Vec& n) { return n.dot(b.v) + a.r_n.dot(b.w); }
+
+void RigidBodies::push(Motion& b, const Arm& a, const Vec& n, double j) {
+  if (b.inv_mass == 0) return;
+  b.v += (j * b.inv_mass) * n;
+  b.w += j * a.turn;
+  b.impulse += j * n;
+  b.angular_impulse += j * a.r_n;
+}
+
+void RigidBodies::store(const Model& m, std::span<double> y, std::size_t b, const Motion& motion) {
   if (m.bodies[b].inv_mass == 0) return;
   const Layout at = layout(m, b);
-  put(y, at.p, Vec(vec_at(y, at.p) + impulse));
-  put(y, at.l, Vec(vec_at(y, at.l) + (p - vec_at(y, at.x)).cross(impulse)));
+  put(y, at.p, Vec(vec_at(y, at.p) + motion.impulse));
+  put(y, at.l, Vec(vec_at(y, at.l) + motion.angular_impulse));
 }
 
-void RigidBodies::translate(const Model& m, std::span<double> y, std::size_t b, const Vec& d) {
+void RigidBodies::displace(const Model& m, std::span<double> y, std::size_t b, const Motion& pseudo) {
+  if (m.bodies[b].inv_mass == 0) return;
   const Layout at = layout(m, b);
-  put(y, at.x, Vec(vec_at(y, at.x) + d));
+  put(y, at.x, Vec(vec_at(y, at.x) + pseudo.v));
+  const double angle = pseudo.w.norm();
+  if (!(angle > 0)) return;
+  const Eigen::AngleAxisd turn(angle, pseudo.w / angle);
+  if (m.rotation == core::Rotation::matrix) {
+    put(y, at.rot, Mat(turn.toRotationMatrix() * matrix_at(y, at.rot)));
+  } else {
+    const Eigen::Quaterniond q = Eigen::Quaterniond(turn) * quat_at(y, at.rot);
+    y[at.rot] = q.w(), y[at.rot + 1] = q.x(), y[at.rot + 2] = q.y(), y[at.rot + 3] = q.z();
+  }
 }
 
 }  // namespace gacompare::traditional

@@ -57,17 +57,44 @@ struct RigidBodies {
   // --- collisions (§2.4–2.5); called only when the scene lists the effect ---
   // The pose the narrowphase places the mesh with (centre of mass, rotation).
   static collision::Pose pose(const Model& m, std::span<const double> y, std::size_t b);
-  // Velocity of the world point p carried by body b (eq. 47).
-  static Eigen::Vector3d velocity_at(const Model& m, std::span<const double> y, std::size_t b, const Eigen::Vector3d& p);
-  // Body b's term of the impulse denominator for an impulse along n at p, so
-  // that n·Δṗ = j · inverse_effective_mass (eq. 53 / eq. 54 per backend).
-  static double inverse_effective_mass(const Model& m, std::span<const double> y, std::size_t b,
-                                       const Eigen::Vector3d& p, const Eigen::Vector3d& n);
-  // An impulse J applied at world point p (eq. 48–49): P += J, L += r × J / r ∧ J.
-  static void apply_impulse(const Model& m, std::span<double> y, std::size_t b, const Eigen::Vector3d& p,
-                            const Eigen::Vector3d& impulse);
-  // Moves body b's centre of mass by d (positional correction of resting contact).
-  static void translate(const Model& m, std::span<double> y, std::size_t b, const Eigen::Vector3d& d);
+  // The contact solver's view of a body (core/collisions.hpp): its motion in
+  // the world frame, read from the state once per response. The solver's rows
+  // are built once per contact (Arm) and its sweeps then only take dot
+  // products and add vectors; store() writes the accumulated impulses back.
+  struct Motion {
+    Eigen::Vector3d x, v, w;         // centre of mass, velocity, angular velocity (axial)
+    Eigen::Matrix3d inv_inertia;     // world: R I⁻¹ Rᵀ (eq. 31 as corrected above); zero when static
+    double inv_mass = 0;             // zero when static
+    Eigen::Vector3d impulse = Eigen::Vector3d::Zero(), angular_impulse = Eigen::Vector3d::Zero();
+  };
+  // One body's part of a contact row along n at p: r × n and I⁻¹(r × n).
+  struct Arm {
+    Eigen::Vector3d r_n, turn;
+  };
+  static Motion motion(const Model& m, std::span<const double> y, std::size_t b);
+  static Eigen::Vector3d position(const Motion& b) { return b.x; }
+  // The same body with no velocity and no impulses: the start of a pseudo-velocity solve.
+  static Motion at_rest(const Motion& b) {
+    Motion p = b;
+    p.v.setZero(), p.w.setZero(), p.impulse.setZero(), p.angular_impulse.setZero();
+    return p;
+  }
+  static Arm arm(const Motion& b, const Eigen::Vector3d& p, const Eigen::Vector3d& n);
+  // Eq. 53's term for one body: 1/M + n·((I⁻¹(r × n)) × r) = 1/M + (r × n)·I⁻¹(r × n).
+  static double inverse_effective_mass(const Motion& b, const Arm& a);
+  // n·ṗ at the row's point (eq. 47: ṗ = v + ω × r, and n·(ω × r) = ω·(r × n)).
+  static double normal_velocity(const Motion& b, const Arm& a, const Eigen::Vector3d& n);
+  // An impulse j n at the row's point (eq. 48–49): v += j n/M, ω += j I⁻¹(r × n).
+  static void push(Motion& b, const Arm& a, const Eigen::Vector3d& n, double j);
+  // |v| and |ω|: how far a point at distance ρ from the centre can move.
+  static double speed(const Motion& b) { return b.v.norm(); }
+  static double angular_speed(const Motion& b) { return b.w.norm(); }
+  // P += Σ j n, L += Σ j r × n: the impulses pushed into the motion.
+  static void store(const Model& m, std::span<double> y, std::size_t b, const Motion& motion);
+  // Positional correction by pseudo-velocities (split impulse): moves body b by
+  // the displacement v and turns it by the rotation vector w of a Motion that
+  // started at rest; P and L are not touched, so no momentum is injected.
+  static void displace(const Model& m, std::span<double> y, std::size_t b, const Motion& pseudo);
 };
 
 }  // namespace gacompare::traditional

@@ -58,6 +58,40 @@ TEST(Mesh, BuiltInShapesHaveTheirCountsAndMergedPlanes) {
   }
 }
 
+// Face loops (the contact manifold's polygons): one per plane, every vertex
+// on its plane, counter-clockwise seen from outside (each corner turns left
+// about the normal), and each face's area from its loop (the shoelace sum)
+// equal to the area of its triangles. Built shapes, and a Qhull hull whose
+// square faces come triangulated. Areas to 1e-12 (sums of a few products).
+TEST(Mesh, FaceLoopsAreCounterClockwisePolygonsOfTheirPlanes) {
+  std::vector<Vec3> corners = make_box({1, 2, 3}).vertices();
+  corners.push_back({0, 0, 0});  // inside: not a hull vertex
+  const Mesh meshes[] = {make_box({1, 2, 3}), make_tetrahedron(1.5), make_pyramid(2, 3), make_icosahedron(1.3),
+                         convex_hull(corners)};
+  for (const Mesh& m : meshes) {
+    ASSERT_EQ(m.faces().size(), m.planes().size()) << m.name();
+    std::vector<double> area(m.planes().size(), 0);
+    for (std::size_t t = 0; t < m.triangles().size(); ++t) {
+      const auto [a, b, c] = m.triangles()[t];
+      area[m.triangle_plane()[t]] += 0.5 * (m.vertices()[b] - m.vertices()[a]).cross(m.vertices()[c] - m.vertices()[a]).norm();
+    }
+    for (std::size_t p = 0; p < m.planes().size(); ++p) {
+      const auto& loop = m.faces()[p];
+      ASSERT_GE(loop.size(), 3u) << m.name() << " plane " << p;
+      const Vec3 n = m.planes()[p].normal;
+      Vec3 twice = Vec3::Zero();
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const Vec3 u = m.vertices()[loop[k]], v = m.vertices()[loop[(k + 1) % loop.size()]],
+                   w = m.vertices()[loop[(k + 2) % loop.size()]];
+        EXPECT_NEAR(m.planes()[p].distance(u), 0, 1e-12) << m.name();
+        EXPECT_GT(n.dot((v - u).cross(w - v)), 0) << m.name() << " plane " << p;
+        twice += u.cross(v);
+      }
+      EXPECT_NEAR(0.5 * n.dot(twice), area[p], 1e-12) << m.name() << " plane " << p;
+    }
+  }
+}
+
 TEST(Mesh, BuiltInShapesHaveTheirSizes) {
   // Independent of the builders: distances measured on the vertices.
   const Mesh box = make_box({1, 2, 3});

@@ -1,0 +1,456 @@
+// The physical-sanity rules of `check` and `compare` (compare/sanity.hpp says
+// what each rule is; this file says why each bound is what it is).
+#include "compare/sanity.hpp"
+
+#include "core/mass_properties.hpp"
+#include "core/mesh.hpp"
+#include "core/rigid_body.hpp"
+#include "core/separating_axis.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace gacompare::compare {
+
+namespace {
+using core::Vec3;
+using Mat3 = Eigen::Matrix3d;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
+
+// What the rules need to know about a scene, read once.
+struct World {
+  const core::Collisions* collisions = nullptr;
+  double g = 0;             // |g|
+  Vec3 down = Vec3::Zero(); // ĝ; zero without gravity
+  double tol = 0, v_rest = 0;
+  // The meshes as the collider builds them (core/collisions.cpp): the shape's
+  // mesh moved so that its centre of mass is the origin, so that a sample's
+  // position and orientation place it.
+  std::vector<core::Mesh> meshes;
+  std::vector<double> mass, radius;  // radius: of the sphere about the centre of mass holding the mesh
+  std::vector<bool> is_static;
+  const core::Scene* scene = nullptr;
+};
+
+World world_of(const core::Scene& scene) {
+  World w;
+  w.scene = &scene;
+  w.collisions = scene.find_effect<core::Collisions>();
+  if (!w.collisions) return w;
+  if (const auto* g = scene.find_effect<core::Gravity>(); g && g->g.norm() > 0) {
+    w.g = g->g.norm();
+    w.down = g->g / w.g;
+  }
+  w.tol = w.collisions->penetration_tolerance;
+  // The collider's resting speed (core/collisions.hpp): a contact approaching
+  // slower than a fall through the tolerance plus two steps of gravity is at rest.
+  w.v_rest = std::sqrt(2 * w.g * w.tol) + 2 * w.g * w.collisions->step;
+  const auto props = core::body_properties(scene);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    core::Mesh mesh = core::mesh_for(scene.bodies[i].shape);
+    const Vec3 com = core::mass_properties(mesh, 1.0).centre_of_mass;
+    mesh = mesh.transformed(Mat3::Identity(), -com);
+    double r = 0;
+    for (const Vec3& v : mesh.vertices()) r = std::max(r, v.norm());
+    w.meshes.push_back(std::move(mesh));
+    w.mass.push_back(props[i].mass);
+    w.radius.push_back(r);
+    w.is_static.push_back(scene.bodies[i].is_static);
+  }
+  return w;
+}
+
+// A body where a sample puts it: vertices and face planes in world coordinates.
+struct Posed {
+  Vec3 c = Vec3::Zero();
+  Mat3 r = Mat3::Identity();
+  std::vector<Vec3> v;
+  std::vector<core::Plane> planes;
+};
+
+std::vector<Posed> pose_all(const World& w, const core::Sample& s) {
+  std::vector<Posed> out(s.bodies.size());
+  for (std::size_t i = 0; i < s.bodies.size() && i < w.meshes.size(); ++i) {
+    Posed& p = out[i];
+    const auto& q = s.bodies[i].orientation;
+    // Normalised: a sample may carry the run's rotation drift, which is
+    // reported elsewhere; the geometry is judged on the rotation it stands for.
+    p.r = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+    p.c = s.bodies[i].position;
+    for (const Vec3& x : w.meshes[i].vertices()) p.v.push_back(p.r * x + p.c);
+    for (const auto& pl : w.meshes[i].planes()) {
+      const Vec3 n = p.r * pl.normal;
+      p.planes.push_back({n, n.dot(p.c) + pl.offset});
+    }
+  }
+  return out;
+}
+
+// The largest gap along a face normal of either body: a lower bound of their
+// distance when positive; when negative, −gap is at least the penetration depth
+// (the edge × edge axes can only make the depth smaller).
+double face_gap(const Posed& a, const Posed& b) {
+  double best = -kInf;
+  const auto side = [&](const Posed& f, const Posed& o) {
+    for (const auto& pl : f.planes) {
+      double lo = kInf;
+      for (const Vec3& x : o.v) lo = std::min(lo, pl.distance(x));
+      best = std::max(best, lo);
+    }
+  };
+  side(a, b);
+  side(b, a);
+  return best;
+}
+
+bool spheres_apart(const World& w, const Posed& a, std::size_t ia, const Posed& b, std::size_t ib, double by) {
+  return (a.c - b.c).norm() - w.radius[ia] - w.radius[ib] >= by;
+}
+
+bool applies(const World& w, const core::Run& run) { return w.collisions && !run.error && !run.samples.empty(); }
+
+CheckLine line(const core::Scene& scene, const core::Run& run, const std::string& what, double value, double bound,
+               bool ok, std::string note) {
+  return {scene.name, run.backend, what, value, bound, ok ? CheckLine::Verdict::pass : CheckLine::Verdict::fail,
+          std::move(note)};
+}
+CheckLine info(const core::Scene& scene, const core::Run& run, const std::string& what, std::string note) {
+  return {scene.name, run.backend, what, 0, 0, CheckLine::Verdict::info, std::move(note)};
+}
+
+// ---- rule 1: energy -------------------------------------------------------------
+
+// Stack levels at a sample: 1 for a dynamic body touching nothing lower, else
+// one more than the highest level among the lower dynamic bodies it touches
+// (within the tolerance along every face axis). Positional correction may lift
+// a body by one tolerance above what it rests on, which may itself be lifted.
+std::vector<int> stack_levels(const World& w, const std::vector<Posed>& posed) {
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < posed.size(); ++i)
+    if (!w.is_static[i]) order.push_back(i);
+  const auto height = [&](std::size_t i) { return -posed[i].c.dot(w.down); };
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return height(a) < height(b); });
+  std::vector<int> level(posed.size(), 0);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::size_t i = order[k];
+    level[i] = 1;
+    for (std::size_t m = 0; m < k; ++m) {
+      const std::size_t j = order[m];
+      if (height(j) < height(i) && !spheres_apart(w, posed[i], i, posed[j], j, w.tol) &&
+          face_gap(posed[i], posed[j]) <= w.tol)
+        level[i] = std::max(level[i], level[j] + 1);
+    }
+  }
+  return level;
+}
+
+CheckLine energy(const World& w, const core::Scene& scene, const core::Run& run) {
+  const std::string what = "sanity: energy rise (J)";
+  double max_eps = w.collisions->restitution;
+  for (const auto& b : scene.bodies)
+    if (b.restitution) max_eps = std::max(max_eps, *b.restitution);
+  const auto* pushes = scene.find_effect<core::AppliedForces>();
+  if (max_eps > 1) return info(scene, run, what, "not checked: a restitution above 1 adds energy by design");
+  if (pushes && !pushes->forces.empty()) return info(scene, run, what, "not checked: applied forces do work");
+  if (!scene.constraints.empty()) return info(scene, run, what, "not checked: drift control of constraints does work");
+  if (scene.find_effect<core::AttractionBetweenParticles>() || scene.find_effect<core::AttractionToPoint>())
+    return info(scene, run, what,
+                "not checked: the integration error of an attraction's potential is not bounded by rounding");
+
+  // Rounding: E is a sum of terms of size up to |K0|, |U0|; 1e-9 of them is far
+  // above double rounding through a run and far below any injection that matters.
+  const auto& s0 = run.samples.front();
+  const double e0 = s0.kinetic + s0.potential;
+  const double rounding = kSanityEnergyRounding * (std::abs(e0) + std::abs(s0.kinetic) + std::abs(s0.potential));
+  // Lift: positional correction may leave a resting body up to one tolerance
+  // higher than the lowest it sat (depths stay in (0, tol]), m |g| tol each.
+  double lift = 0;
+  for (std::size_t i = 0; i < w.mass.size(); ++i)
+    if (!w.is_static[i]) lift += w.mass[i] * w.g * w.tol;
+
+  double lowest = e0, t_lowest = s0.t;
+  double worst_margin = -kInf, worst_rise = 0, worst_bound = rounding + lift, t_worst = 0, t_from = 0;
+  for (const auto& s : run.samples) {
+    const double e = s.kinetic + s.potential;
+    if (e < lowest) lowest = e, t_lowest = s.t;
+    const double rise = e - lowest;
+    double bound = rounding + lift;
+    if (rise > bound && w.g > 0) {  // stacks: a body on bodies may be lifted by each of them
+      const auto level = stack_levels(w, pose_all(w, s));
+      double stacked = 0;
+      for (std::size_t i = 0; i < w.mass.size(); ++i) stacked += w.mass[i] * w.g * w.tol * level[i];
+      bound = rounding + stacked;
+    }
+    if (rise - bound > worst_margin) {
+      worst_margin = rise - bound;
+      worst_rise = rise, worst_bound = bound, t_worst = s.t, t_from = t_lowest;
+    }
+  }
+  const bool ok = !(worst_margin > 0);  // NaN fails
+  return line(scene, run, what, worst_rise, worst_bound, ok,
+              ok ? "" : "energy rose by " + num(worst_rise) + " J from its lowest (t = " + num(t_from) + " s) to t = " +
+                            num(t_worst) + " s, above the " + num(worst_bound) + " J positional correction may add");
+}
+
+// ---- rule 2: passing through a static body --------------------------------------
+
+CheckLine penetration(const World& w, const core::Scene& scene, const core::Run& run) {
+  const std::string what = "sanity: penetration into a static body (m)";
+  if (std::none_of(w.is_static.begin(), w.is_static.end(), [](bool s) { return s; }))
+    return info(scene, run, what, "not checked: no static bodies");
+  // 10 tolerances: the time-of-impact search keeps contacts within one
+  // tolerance and a resting body sinks less than that between checks, so ten is
+  // unreachable by a working collider and still a small fraction of any body.
+  // A backend with no time of impact (Bullet: it reports its fixed step) sees a
+  // contact only after the step that made it, so its bound adds one step's
+  // travel at the body's highest speed: that is its method, not a body passing
+  // through (README, "Bullet as a whole-simulation reference").
+  const auto fixed = run.metrics.find("bullet_fixed_step_s");
+  const double step = fixed == run.metrics.end() ? 0.0 : fixed->second;
+  std::vector<double> bound(w.mass.size(), kSanityDeepPenetration * w.tol);
+  for (const auto& s : run.samples)
+    for (std::size_t i = 0; i < bound.size() && i < s.bodies.size(); ++i)
+      bound[i] = std::max(bound[i], kSanityDeepPenetration * w.tol + step * s.bodies[i].velocity.norm());
+  // The pair closest to (or furthest past) its bound; depth 0 until one touches.
+  double depth_at = 0, bound_at = kSanityDeepPenetration * w.tol, margin = -kInf, t_at = 0;
+  std::size_t body = 0, wall = 0;
+  std::string inside;  // the first centre of mass found inside a static body
+  for (const auto& s : run.samples) {
+    const auto posed = pose_all(w, s);
+    for (std::size_t i = 0; i < posed.size(); ++i) {
+      if (w.is_static[i]) continue;
+      for (std::size_t j = 0; j < posed.size(); ++j) {
+        if (!w.is_static[j] || spheres_apart(w, posed[i], i, posed[j], j, 0)) continue;
+        const bool centre_in = std::all_of(posed[j].planes.begin(), posed[j].planes.end(),
+                                           [&](const core::Plane& p) { return p.distance(posed[i].c) < 0; });
+        // −face_gap bounds the depth from above: the exact (slow) depth is
+        // needed only where it could come closest to the bound so far.
+        const double upper = -face_gap(posed[j], posed[i]);
+        if (!centre_in && !(upper > 0 && upper - bound[i] > margin)) continue;
+        const collision::Placed a{&w.meshes[j], {posed[j].r, posed[j].c}}, b{&w.meshes[i], {posed[i].r, posed[i].c}};
+        double depth = collision::sat_reference(a, b).depth;
+        if (depth < 0) depth = 0;  // apart along an edge × edge axis the faces missed: no penetration
+        if (depth - bound[i] > margin || std::isnan(depth))
+          margin = depth - bound[i], depth_at = depth, bound_at = bound[i], t_at = s.t, body = i, wall = j;
+        if (centre_in && inside.empty())
+          inside = scene.bodies[i].name + "'s centre of mass is inside " + scene.bodies[j].name + " at t = " + num(s.t) +
+                   " s";
+      }
+    }
+  }
+  const bool ok = !(depth_at > bound_at) && !std::isnan(depth_at) && inside.empty();
+  std::string note;
+  if (!ok) {
+    note = scene.bodies[body].name + " is " + num(depth_at) + " m deep in " + scene.bodies[wall].name + " at t = " +
+           num(t_at) + " s";
+    if (!inside.empty()) note += "; " + inside;
+  } else if (step > 0) {
+    note = "bound: 10 tolerances plus one fixed step (" + num(step) + " s) at the body's highest speed";
+  }
+  return line(scene, run, what, depth_at, bound_at, ok, note);
+}
+
+// ---- rule 3: sideways drift at rest (sanity.hpp states the rule) --------------
+
+Vec3 lateral(const World& w, const Vec3& x) { return x - x.dot(w.down) * w.down; }
+
+// Whether a level face of `f` has `o` on its outer side (to within `band`) with
+// o's lowest points over the face at least `margin` inside its edges: then every
+// contact between the two is on that face, and its normal is vertical.
+bool across_level_face(const World& w, const Posed& f, const Posed& o, double band, double margin) {
+  for (std::size_t k = 0; k < f.planes.size(); ++k) {
+    const auto& p = f.planes[k];
+    if (p.normal.cross(w.down).norm() > kSanityLevel) continue;
+    double lo = kInf;
+    for (const Vec3& x : o.v) lo = std::min(lo, p.distance(x));
+    if (lo < -band) continue;
+    bool inner = true;
+    for (const Vec3& x : o.v) {
+      if (p.distance(x) > lo + band) continue;  // not among the lowest points over the face
+      for (std::size_t m = 0; m < f.planes.size() && inner; ++m)
+        if (m != k && f.planes[m].distance(x) > -margin) inner = false;
+    }
+    if (inner) return true;
+  }
+  return false;
+}
+
+struct Stretch {  // a run of checked intervals of one body
+  bool open = false;
+  double t0 = 0, t1 = 0;
+  Vec3 v0 = Vec3::Zero(), x0 = Vec3::Zero(), integral = Vec3::Zero();
+  double dv = 0, drift = 0;
+};
+
+std::vector<CheckLine> lateral_drift(const World& w, const core::Scene& scene, const core::Run& run) {
+  const std::string what_v = "sanity: lateral velocity change at rest (m/s per s)";
+  const std::string what_x = "sanity: lateral drift at rest (m)";
+  const auto both = [&](const std::string& why) {
+    return std::vector<CheckLine>{info(scene, run, what_v, why), info(scene, run, what_x, why)};
+  };
+  if (w.g == 0) return both("not checked: no gravity, so neither 'at rest' nor 'sideways' is defined");
+  const auto* linear = scene.find_effect<core::LinearDrag>();
+  const auto* quadratic = scene.find_effect<core::QuadraticDrag>();
+  if ((linear && linear->k > 0) || (quadratic && quadratic->k > 0))
+    return both("not checked: drag slows a sliding body sideways");
+  const core::BodyEffects fx = core::body_effects(scene);
+  const double band = kSanityDeepPenetration * w.tol;
+
+  const std::size_t n = run.samples.front().bodies.size(), count = run.samples.size();
+  // At rest vertically, for kSanityRestWindow samples in a row: one sample of
+  // small vertical speed is every bounce's apex, not rest.
+  std::vector<std::vector<char>> resting(n, std::vector<char>(count, 0));
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t k = 0;
+    while (k < count) {
+      std::size_t e = k;
+      while (e < count && std::abs(run.samples[e].bodies[i].velocity.dot(w.down)) < w.v_rest) ++e;
+      if (e - k >= static_cast<std::size_t>(kSanityRestWindow))
+        std::fill(resting[i].begin() + static_cast<long>(k), resting[i].begin() + static_cast<long>(e), 1);
+      k = std::max(e, k + 1);
+    }
+  }
+  const auto speed = [&](const core::Sample& s, std::size_t i) {
+    return s.bodies[i].velocity.norm() + s.bodies[i].angular_velocity.norm() * w.radius[i];
+  };
+
+  std::vector<Stretch> open(n);
+  double worst_rate = 0, worst_drift = 0, rested = 0;
+  std::string rate_note, drift_note;
+  int stretches = 0;
+  const auto close = [&](std::size_t i) {
+    Stretch& st = open[i];
+    if (!st.open) return;
+    st.open = false;
+    ++stretches;
+    rested += st.t1 - st.t0;
+    const double rate = st.dv / std::max(st.t1 - st.t0, 1.0);
+    const std::string where = scene.bodies[i].name + " at rest from t = " + num(st.t0) + " to " + num(st.t1) + " s";
+    if (rate > worst_rate || std::isnan(rate))
+      worst_rate = rate, rate_note = where + ": its lateral velocity changed by " + num(st.dv) + " m/s";
+    if (st.drift > worst_drift || std::isnan(st.drift))
+      worst_drift = st.drift, drift_note = where + ": it moved sideways " + num(st.drift) + " m more than its velocity explains";
+  };
+
+  std::vector<Posed> here = pose_all(w, run.samples[0]), next;
+  for (std::size_t k = 0; k + 1 < count; ++k) {
+    const auto& s0 = run.samples[k];
+    const auto& s1 = run.samples[k + 1];
+    next = pose_all(w, s1);
+    const double dt = s1.t - s0.t;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (w.is_static[i]) continue;
+      bool ok = resting[i][k] && resting[i][k + 1] && dt > 0;
+      for (const auto& p : fx.pushes)
+        ok = ok && !(p.body == i && p.from < s1.t && p.until > s0.t);
+      for (std::size_t j = 0; j < n && ok; ++j) {
+        if (j == i) continue;
+        // What the two could close in this interval: both speeds (with the
+        // rotation's sweep), gravity's change of velocity, and the band.
+        const double reach = dt * (std::max(speed(s0, i), speed(s1, i)) + std::max(speed(s0, j), speed(s1, j))) +
+                             w.g * dt * dt + band;
+        for (const auto* posed : {&here, &next}) {
+          const Posed &a = (*posed)[i], &b = (*posed)[j];
+          if (spheres_apart(w, a, i, b, j, reach) || face_gap(a, b) >= reach) continue;
+          if (!across_level_face(w, b, a, band, reach) && !across_level_face(w, a, b, band, reach)) ok = false;
+        }
+      }
+      Stretch& st = open[i];
+      if (!ok) {
+        close(i);
+        continue;
+      }
+      const auto& b0 = s0.bodies[i];
+      const auto& b1 = s1.bodies[i];
+      if (!st.open) st = {true, s0.t, s0.t, lateral(w, b0.velocity), lateral(w, b0.position), Vec3::Zero(), 0, 0};
+      st.integral += 0.5 * dt * (lateral(w, b0.velocity) + lateral(w, b1.velocity));
+      st.t1 = s1.t;
+      st.dv = std::max(st.dv, (lateral(w, b1.velocity) - st.v0).norm());
+      st.drift = std::max(st.drift, (lateral(w, b1.position) - st.x0 - st.integral).norm());
+    }
+    here.swap(next);
+  }
+  for (std::size_t i = 0; i < n; ++i) close(i);
+  if (stretches == 0) return both("not checked: no body rested on level faces alone");
+  const std::string checked =
+      "checked over " + std::to_string(stretches) + " stretch(es) of rest, " + num(rested) + " s in all";
+  const bool rate_ok = worst_rate <= kSanityLateralAcceleration, drift_ok = worst_drift <= kSanityLateralDrift;
+  return {line(scene, run, what_v, worst_rate, kSanityLateralAcceleration, rate_ok, rate_ok ? checked : rate_note),
+          line(scene, run, what_x, worst_drift, kSanityLateralDrift, drift_ok, drift_ok ? checked : drift_note)};
+}
+
+// ---- rule 4: contacts left approaching -----------------------------------------
+
+CheckLine unresolved(const core::Scene& scene, const core::Run& run) {
+  const std::string what = "sanity: unresolved impacts";
+  const auto it = run.counters.find("unresolved_impacts");
+  if (it == run.counters.end())
+    return info(scene, run, what, "not measured: this run has no unresolved_impacts counter");
+  const double v = static_cast<double>(it->second);
+  return line(scene, run, what, v, 0, it->second == 0,
+              it->second == 0 ? ""
+                              : std::to_string(it->second) +
+                                    " contact point(s) still approaching faster than the resting speed after the response");
+}
+
+}  // namespace
+
+CheckLine energy_rise_check(const core::Scene& scene, const core::Run& run) {
+  const World w = world_of(scene);
+  if (!applies(w, run)) return info(scene, run, "sanity: energy rise (J)", "not checked: no collisions or no samples");
+  return energy(w, scene, run);
+}
+
+CheckLine penetration_check(const core::Scene& scene, const core::Run& run) {
+  const World w = world_of(scene);
+  if (!applies(w, run))
+    return info(scene, run, "sanity: penetration into a static body (m)", "not checked: no collisions or no samples");
+  return penetration(w, scene, run);
+}
+
+std::vector<CheckLine> lateral_drift_checks(const core::Scene& scene, const core::Run& run) {
+  const World w = world_of(scene);
+  if (!applies(w, run)) return {};
+  return lateral_drift(w, scene, run);
+}
+
+CheckLine unresolved_impacts_check(const core::Scene& scene, const core::Run& run) { return unresolved(scene, run); }
+
+std::vector<CheckLine> sanity_checks(const core::Scene& scene, const core::Run& run) {
+  const World w = world_of(scene);
+  if (!applies(w, run)) return {};
+  std::vector<CheckLine> out{energy(w, scene, run), penetration(w, scene, run)};
+  for (auto& l : lateral_drift(w, scene, run)) out.push_back(std::move(l));
+  out.push_back(unresolved(scene, run));
+  return out;
+}
+
+std::vector<CheckLine> sanity_checks(const SceneResult& r) {
+  std::vector<CheckLine> out;
+  for (const auto& b : r.backends) {
+    auto lines = sanity_checks(r.scene, b.run);
+    out.insert(out.end(), lines.begin(), lines.end());
+  }
+  return out;
+}
+
+std::vector<std::string> sanity_warnings(const std::vector<CheckLine>& lines) {
+  std::vector<std::string> out;
+  for (const auto& l : lines)
+    if (l.verdict == CheckLine::Verdict::fail)
+      out.push_back(l.backend + ": " + l.what.substr(l.what.find(':') + 2) + " " + num(l.value) + ", bound " +
+                    num(l.bound) + (l.note.empty() ? "" : ": " + l.note));
+  return out;
+}
+
+}  // namespace gacompare::compare

@@ -1,0 +1,87 @@
+#pragma once
+// Physical sanity of a collision run (issue #12, item 5): four rules that hold
+// for any correct frictionless contact response, checked on the samples a run
+// wrote, whatever backend wrote them (traditional, cga, bullet). `check` fails
+// on them (exit 1); `compare` prints them as warnings in report.md / report.html.
+// A run that goes wrong must not look green because its two backends agree with
+// each other and with a baseline stored from the same wrong code.
+//
+// The rules apply to every run of a scene that lists the `collisions` effect
+// (other scenes get no lines) and that did not stop early (that already fails):
+//
+//  1. Energy never rises (scenes with every restitution ≤ 1 and nothing doing
+//     work: no applied forces, no constraints, no attractions; drag only takes
+//     energy away). E = kinetic + potential of the samples may rise above its
+//     lowest value so far by at most Σ_i m_i |g| tol L_i + 1e-9 · (|E0| + |K0| + |U0|):
+//     positional correction may lift a resting body by up to the penetration
+//     tolerance above the body it rests on, and a body at level L_i of a stack
+//     (L = 1 on a static body, 2 on a body on a static body, ...) by L_i of them.
+//  2. No body passes through a static body: at no sample is a dynamic body deeper
+//     than 10 · tol in a static one (exact separating-axis depth,
+//     collision::sat_reference), nor its centre of mass inside one. A backend
+//     that steps without a time of impact (Bullet, which reports its fixed step
+//     h in run.metrics) may also dip one step's travel, h · |v|max. Samples
+//     only: a body that passes wholly through a thin static body between two
+//     samples is not seen here.
+//  3. A body at rest does not drift sideways. See lateral_drift_checks below.
+//  4. No contact is left approaching: the collider's `unresolved_impacts`
+//     counter (contact points approaching faster than the resting speed before
+//     the response and still approaching after it) is 0. Absent (older runs,
+//     Bullet): "not measured", an info line.
+#include "compare/check.hpp"
+
+#include <vector>
+
+namespace gacompare::compare {
+
+// The bounds, each explained where it is used (sanity.cpp).
+inline constexpr double kSanityEnergyRounding = 1e-9;      // relative, of |E0| + |K0| + |U0|
+inline constexpr double kSanityDeepPenetration = 10;       // × penetration tolerance
+inline constexpr double kSanityLateralAcceleration = 1e-6; // m/s per s of rest (at least one second counted)
+inline constexpr double kSanityLateralDrift = 1e-6;        // m
+inline constexpr double kSanityLevel = 1e-8;               // sin of the tilt below which a face counts as level
+inline constexpr int kSanityRestWindow = 3;                // samples in a row at rest vertically
+
+// The four rules for one run of `scene` (generators expanded, as
+// SceneResult::scene); empty unless the scene lists `collisions` and the run
+// has samples and no error. One CheckLine per rule (two for rule 3: velocity
+// and displacement), `what` starting with "sanity:"; a rule that does not
+// apply to the scene is an info line saying why.
+std::vector<CheckLine> sanity_checks(const core::Scene& scene, const core::Run& run);
+// Every run of a comparison, in backend order.
+std::vector<CheckLine> sanity_checks(const SceneResult& r);
+
+// The rules one by one (the tests call them on runs built by hand).
+CheckLine energy_rise_check(const core::Scene& scene, const core::Run& run);
+CheckLine penetration_check(const core::Scene& scene, const core::Run& run);
+// Rule 3. Frictionless contact pushes only along the contact normal, and gravity
+// is vertical, so a body whose every contact has a vertical normal keeps its
+// horizontal ("lateral", ⟂ g) velocity, and its horizontal position moves by
+// exactly the integral of that velocity. On a slope or against a wall it
+// legitimately does not. The rule is checked over stretches of samples where
+// a body
+//   - is at rest vertically: |v·ĝ| < v_rest = √(2|g| tol) + 2|g| step (the
+//     collider's resting speed) at kSanityRestWindow or more samples in a row;
+//   - has no applied force acting on it, and the scene has no drag (both push
+//     sideways);
+//   - at both ends of each sample interval, every other body within its reach
+//     (what the two could close in one interval: (speeds + |ω| radii) · Δt +
+//     |g| Δt² + 10 tol) touches it across a level face: a face of one of the
+//     two, tilted by less than kSanityLevel, with the other body on its outer
+//     side to within 10 tol and that body's lowest points over the face's
+//     interior by at least the reach (so the contact is not at an edge, where
+//     the normal is ambiguous). Other bodies further than the reach are
+//     proved far by a face axis of the pair.
+// Over each stretch [t0, t1]: the lateral velocity changes by at most
+// kSanityLateralAcceleration · max(t1 − t0, 1 s) (no body starts sliding on
+// its own), and the lateral displacement differs from the trapezoid integral of
+// the sampled lateral velocity by at most kSanityLateralDrift (no sideways
+// teleport by positional correction).
+std::vector<CheckLine> lateral_drift_checks(const core::Scene& scene, const core::Run& run);
+CheckLine unresolved_impacts_check(const core::Scene& scene, const core::Run& run);
+
+// The failing lines, one sentence each ("traditional: energy rose ..."), for
+// report.md's warnings.
+std::vector<std::string> sanity_warnings(const std::vector<CheckLine>& lines);
+
+}  // namespace gacompare::compare

@@ -1,0 +1,292 @@
+// The physical-sanity rules (compare/sanity.hpp) on runs built by hand: a clean
+// run passes every rule, and each way of breaking physics fails its rule (and
+// only where it should: a slope, a wall and a stack are not failures).
+#include "compare/check.hpp"
+#include "compare/machine.hpp"
+#include "compare/report.hpp"
+#include "compare/sanity.hpp"
+#include "core/invariants.hpp"
+#include "core/rigid_body.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+namespace {
+using namespace gacompare;
+using compare::CheckLine;
+using core::Vec3;
+
+constexpr double kTol = 1e-4, kG = 9.81, kDt = 0.01;
+
+core::Body box(const std::string& name, const Vec3& size, double mass, const Vec3& at, bool fixed = false) {
+  core::Body b;
+  b.name = name;
+  b.shape = core::BoxShape{size};
+  b.mass = mass;
+  b.position = at;
+  b.is_static = fixed;
+  return b;
+}
+
+// A 2 × 2 × 0.2 slab with its top face at z = 0 and a 0.2 m cube of 1 kg on it,
+// gravity −z, the bundled collision settings.
+core::Scene slab_scene() {
+  core::Scene s;
+  s.name = "hand";
+  s.effects = {core::Gravity{{0, 0, -kG}}, core::Collisions{0.5, kTol, 1e-3, core::TimeOfImpact::bisection}};
+  s.bodies = {box("slab", {2, 2, 0.2}, 100, {0, 0, -0.1}, true), box("cube", {0.2, 0.2, 0.2}, 1, {0, 0, 0.1})};
+  return s;
+}
+
+// Pose of body b at time t: position, velocity (orientation: the scene's).
+struct State {
+  Vec3 x, v;
+};
+using Motion = std::function<State(std::size_t body, double t)>;
+
+// A run sampled every kDt over [0, duration], energies filled by the code the
+// backends use (core/invariants.hpp); static bodies stay where the scene puts them.
+core::Run make_run(const core::Scene& scene, double duration, const Motion& motion,
+                   const std::string& backend = "traditional") {
+  core::Run run;
+  run.backend = backend;
+  run.counters["unresolved_impacts"] = 0;
+  const auto props = core::body_properties(scene);
+  const int n = static_cast<int>(std::lround(duration / kDt));
+  for (int k = 0; k <= n; ++k) {
+    core::Sample s;
+    s.t = k * kDt;
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      core::BodySample bs;
+      bs.orientation = scene.bodies[b].orientation;
+      bs.position = scene.bodies[b].position;
+      if (!scene.bodies[b].is_static) {
+        const State st = motion(b, s.t);
+        bs.position = st.x, bs.velocity = st.v;
+      }
+      s.bodies.push_back(bs);
+    }
+    core::fill_invariants(scene, props, s);
+    run.samples.push_back(s);
+  }
+  return run;
+}
+
+// The cube resting 5e-5 m deep in the slab, sliding along x at 0.1 m/s: what a
+// frictionless floor allows.
+State sliding(double t) { return {{-0.5 + 0.1 * t, 0.2, 0.1 - 5e-5}, {0.1, 0, 0}}; }
+
+const CheckLine& find(const std::vector<CheckLine>& lines, const std::string& what_starts) {
+  for (const auto& l : lines)
+    if (l.what.rfind(what_starts, 0) == 0) return l;
+  static const CheckLine none{"", "", "missing", 0, 0, CheckLine::Verdict::fail, "no such line"};
+  ADD_FAILURE() << "no line " << what_starts;
+  return none;
+}
+bool passes(const CheckLine& l) { return l.verdict == CheckLine::Verdict::pass; }
+bool fails(const CheckLine& l) { return l.verdict == CheckLine::Verdict::fail; }
+
+TEST(Sanity, ACleanRunPassesEveryRule) {
+  const auto scene = slab_scene();
+  const auto run = make_run(scene, 1.0, [](std::size_t, double t) { return sliding(t); });
+  const auto lines = compare::sanity_checks(scene, run);
+  ASSERT_EQ(lines.size(), 5u);
+  for (const auto& l : lines) EXPECT_TRUE(passes(l)) << l.what << ": " << l.note;
+  EXPECT_NEAR(find(lines, "sanity: penetration").value, 5e-5, 1e-12);
+  EXPECT_NE(find(lines, "sanity: lateral drift").note.find("1 stretch"), std::string::npos);
+  EXPECT_TRUE(compare::sanity_warnings(lines).empty());
+}
+
+TEST(Sanity, OnlyCollisionScenesAndFinishedRunsAreChecked) {
+  auto scene = slab_scene();
+  auto run = make_run(scene, 0.1, [](std::size_t, double t) { return sliding(t); });
+  run.error = "stopped";
+  EXPECT_TRUE(compare::sanity_checks(scene, run).empty());  // the error already fails
+  run.error.reset();
+  scene.effects.pop_back();
+  EXPECT_TRUE(compare::sanity_checks(scene, run).empty());
+}
+
+TEST(Sanity, EnergyRisingFailsNamingTheTimes) {
+  const auto scene = slab_scene();
+  // Lifted by 5 mm at t = 0.5 s, still resting: 49 mJ from nowhere.
+  const auto run = make_run(scene, 1.0, [](std::size_t, double t) {
+    State s = sliding(t);
+    if (t > 0.5 - 1e-9) s.x.z() += 5e-3;
+    return s;
+  });
+  const CheckLine l = compare::energy_rise_check(scene, run);
+  EXPECT_TRUE(fails(l)) << l.note;
+  EXPECT_NEAR(l.value, 1 * kG * 5e-3, 1e-9);
+  EXPECT_NEAR(l.bound, 1 * kG * kTol, 1e-7);  // one cube on a static body: lifted by one tolerance at most
+  EXPECT_NE(l.note.find("to t = 0.5 s"), std::string::npos) << l.note;
+}
+
+TEST(Sanity, PositionalCorrectionWithinTheToleranceIsNotARise) {
+  const auto scene = slab_scene();
+  const auto run = make_run(scene, 1.0, [](std::size_t, double t) {
+    State s = sliding(t);
+    if (t > 0.5 - 1e-9) s.x.z() += 0.9 * kTol;  // corrected from depth ~tol to ~0
+    return s;
+  });
+  EXPECT_TRUE(passes(compare::energy_rise_check(scene, run)));
+}
+
+TEST(Sanity, AStackMayBeLiftedOneToleranceALevel) {
+  auto scene = slab_scene();
+  scene.bodies.push_back(box("top", {0.2, 0.2, 0.2}, 1, {0, 0, 0.3}));
+  // Both corrected at t = 0.5: the cube by one tolerance, the one on it by two.
+  const auto lifted = [](double by) {
+    return [by](std::size_t b, double t) {
+      const double up = t > 0.5 - 1e-9 ? (b == 2 ? 2 * by : by) : 0.0;
+      return State{{0, 0, (b == 2 ? 0.3 : 0.1) - 2e-5 + up}, {0, 0, 0}};
+    };
+  };
+  const CheckLine ok = compare::energy_rise_check(scene, make_run(scene, 1.0, lifted(0.95 * kTol)));
+  EXPECT_TRUE(passes(ok)) << ok.value << " " << ok.bound;
+  EXPECT_NEAR(ok.bound, 3 * kG * kTol, 1e-7);  // levels 1 + 2, and 1e-9 of the energies for rounding
+  EXPECT_TRUE(fails(compare::energy_rise_check(scene, make_run(scene, 1.0, lifted(1.5 * kTol)))));
+}
+
+TEST(Sanity, EnergyIsNotCheckedWhereSomethingDoesWork) {
+  auto scene = slab_scene();
+  scene.effects.push_back(core::AppliedForces{{{"cube", {0, 0, 0}, {1, 0, 0}, 0, 1}}});
+  const auto run = make_run(scene, 0.2, [](std::size_t, double t) { return sliding(t); });
+  const CheckLine l = compare::energy_rise_check(scene, run);
+  EXPECT_EQ(l.verdict, CheckLine::Verdict::info);
+  EXPECT_NE(l.note.find("applied forces"), std::string::npos);
+}
+
+TEST(Sanity, ABodyUnderTheSlabFails) {
+  const auto scene = slab_scene();
+  // 5 mm deep from t = 0.3 s (50 tolerances), then through: centre of mass inside.
+  const auto run = make_run(scene, 1.0, [](std::size_t, double t) {
+    State s = sliding(t);
+    if (t > 0.3 - 1e-9) s.x.z() = 0.1 - 5e-3;
+    if (t > 0.6 - 1e-9) s.x.z() = -0.05;
+    return s;
+  });
+  const CheckLine l = compare::penetration_check(scene, run);
+  EXPECT_TRUE(fails(l));
+  EXPECT_NEAR(l.bound, 10 * kTol, 1e-15);
+  EXPECT_NE(l.note.find("cube is"), std::string::npos) << l.note;
+  EXPECT_NE(l.note.find("deep in slab"), std::string::npos) << l.note;
+  EXPECT_NE(l.note.find("cube's centre of mass is inside slab at t = 0.6 s"), std::string::npos) << l.note;
+}
+
+TEST(Sanity, AFixedStepBackendMayDipOneStepsTravel) {
+  const auto scene = slab_scene();
+  // 3 mm deep at 4 m/s: a 1 ms fixed step's travel (Bullet's), not a tunnel.
+  auto run = make_run(
+      scene, 0.1, [](std::size_t, double t) { return State{{0, 0, 0.1 - (t > 0.05 ? 3e-3 : 0.0)}, {0, 0, -4}}; },
+      "bullet");
+  EXPECT_TRUE(fails(compare::penetration_check(scene, run)));
+  run.metrics["bullet_fixed_step_s"] = 1e-3;
+  const CheckLine l = compare::penetration_check(scene, run);
+  EXPECT_TRUE(passes(l)) << l.note;
+  EXPECT_NEAR(l.bound, 10 * kTol + 4e-3, 1e-12);
+}
+
+TEST(Sanity, ARestingBodyDriftingSidewaysFails) {
+  const auto scene = slab_scene();
+  // Moved sideways by 1 µm per sample with zero velocity: a teleport.
+  const auto teleported = make_run(scene, 1.0, [](std::size_t, double t) {
+    return State{{1e-4 * t, 0, 0.1 - 5e-5}, {0, 0, 0}};
+  });
+  const auto lines = compare::lateral_drift_checks(scene, teleported);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_TRUE(passes(lines[0])) << lines[0].note;  // the velocity did not change
+  EXPECT_TRUE(fails(lines[1]));
+  EXPECT_NEAR(lines[1].value, 1e-4, 1e-12);
+  EXPECT_NE(lines[1].note.find("cube at rest from t = 0 to 1 s"), std::string::npos) << lines[1].note;
+
+  // Accelerated sideways at 1e-4 m/s², position consistent with it: starting to slide on a level floor.
+  const auto accelerated = make_run(scene, 1.0, [](std::size_t, double t) {
+    return State{{0.5e-4 * t * t, 0, 0.1 - 5e-5}, {1e-4 * t, 0, 0}};
+  });
+  const auto acc = compare::lateral_drift_checks(scene, accelerated);
+  EXPECT_TRUE(fails(acc[0]));
+  EXPECT_NEAR(acc[0].value, 1e-4, 1e-12);
+  EXPECT_TRUE(passes(acc[1])) << acc[1].value;
+}
+
+TEST(Sanity, SlidingDownASlopeIsNotDrift) {
+  auto scene = slab_scene();
+  const double theta = 0.2;  // rad, about y
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(theta, Vec3::UnitY()));
+  const Eigen::Matrix3d r = q.toRotationMatrix();
+  for (auto& b : scene.bodies) b.orientation = {q.w(), q.x(), q.y(), q.z()};
+  const Vec3 rest = scene.bodies[0].position + r * Vec3(0, 0, 0.2 - 5e-5);
+  const Vec3 down = r * Vec3(1, 0, 0);  // down the slope: the rotation about +y lowers +x
+  ASSERT_LT(down.z(), 0);
+  const double a = kG * std::sin(theta);
+  const auto run = make_run(scene, 0.3, [&](std::size_t, double t) {
+    return State{rest + 0.5 * a * t * t * down, a * t * down};
+  });
+  for (const auto& l : compare::sanity_checks(scene, run)) EXPECT_FALSE(fails(l)) << l.what << ": " << l.note;
+  EXPECT_EQ(compare::lateral_drift_checks(scene, run)[0].verdict, CheckLine::Verdict::info);
+}
+
+TEST(Sanity, BouncingOffAWallIsNotDrift) {
+  auto scene = slab_scene();
+  scene.bodies.push_back(box("wall", {0.1, 2, 1}, 100, {0.65, 0, 0.5}, true));
+  // Sliding at 0.5 m/s into the wall (face at x = 0.6), back at 0.25 m/s from t = 0.505 s.
+  const auto run = make_run(scene, 1.0, [](std::size_t, double t) {
+    const double tc = 0.505, x = t < tc ? 0.2475 + 0.5 * t : 0.5 - 0.25 * (t - tc);
+    return State{{x, 0, 0.1 - 5e-5}, {t < tc ? 0.5 : -0.25, 0, 0}};
+  });
+  const auto lines = compare::lateral_drift_checks(scene, run);
+  for (const auto& l : lines) EXPECT_TRUE(passes(l)) << l.what << ": " << l.note;
+  EXPECT_NE(lines[0].note.find("2 stretch"), std::string::npos) << lines[0].note;  // before and after the wall
+}
+
+TEST(Sanity, UnresolvedImpactsFailAndAnAbsentCounterIsNotMeasured) {
+  const auto scene = slab_scene();
+  auto run = make_run(scene, 0.1, [](std::size_t, double t) { return sliding(t); });
+  EXPECT_TRUE(passes(compare::unresolved_impacts_check(scene, run)));
+  run.counters["unresolved_impacts"] = 3;
+  const CheckLine l = compare::unresolved_impacts_check(scene, run);
+  EXPECT_TRUE(fails(l));
+  EXPECT_EQ(l.value, 3);
+  run.counters.erase("unresolved_impacts");
+  EXPECT_EQ(compare::unresolved_impacts_check(scene, run).verdict, CheckLine::Verdict::info);
+}
+
+TEST(Sanity, CheckFailsOnASanityRuleAndCarriesABulletRun) {
+  const auto scene = slab_scene();
+  const Motion lifted = [](std::size_t, double t) {
+    State s = sliding(t);
+    if (t > 0.5 - 1e-9) s.x.z() += 5e-3;
+    return s;
+  };
+  compare::SceneResult r{scene, {}};
+  for (const char* b : {"traditional", "cga"}) r.backends.push_back({make_run(scene, 1.0, lifted, b), {{}}, {1.0}, true});
+  auto bullet = make_run(scene, 1.0, [](std::size_t, double t) { return State{{0.3, 0.1 * t, 0.1}, {0, 0.1, 0}}; }, "bullet");
+  bullet.counters.clear();  // Bullet publishes no unresolved_impacts
+  r.backends.push_back({bullet, {{}}, {1.0}, true});
+
+  const auto lines = compare::check_scene(r, std::nullopt);
+  int sanity_failures = 0;
+  for (const auto& l : lines) {
+    if (l.what.rfind("sanity:", 0) == 0 && fails(l)) {
+      ++sanity_failures;
+      EXPECT_NE(l.backend, "bullet") << l.what;
+    }
+    if (l.what == "divergence between backends (m)") {
+      EXPECT_TRUE(passes(l));  // Bullet stays out of it
+    }
+  }
+  EXPECT_EQ(sanity_failures, 2);  // energy, traditional and cga
+  EXPECT_EQ(find(lines, "sanity: unresolved").verdict, CheckLine::Verdict::pass);
+
+  const std::string md = compare::scene_report_md(r, compare::MachineInfo{"cpu", "cc", "today", "Release"}, 1);
+  EXPECT_NE(md.find("**WARNING, physical sanity:** traditional: energy rise"), std::string::npos) << md;
+  EXPECT_NE(md.find("## Physical sanity"), std::string::npos);
+  EXPECT_NE(md.find("| hand | bullet | sanity: unresolved impacts |"), std::string::npos);
+}
+
+}  // namespace
