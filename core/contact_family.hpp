@@ -56,10 +56,6 @@ struct ContactCase {
   Scene scene;           // built in code (scene.file empty)
   std::string expected;  // the analytic outcome, in words and numbers
   std::string bundled;   // "" or the data/scenes file stem that holds this case
-  // The 10 s stacks but two (two boxes touching, the three dropped
-  // 1 mm) and the bundled 5-stack: the tests run them only with
-  // GACOMPARE_LONG_TESTS=1, to keep `ctest -L contact` short.
-  bool long_running = false;
 
   ContactVerdict evaluate(const Scene& scene, const Run& run) const;
   ContactVerdict evaluate(const Run& run) const { return evaluate(scene, run); }
