@@ -367,7 +367,10 @@ struct Collider {
   // without the turn). The rows of an edge or a vertex contact keep their
   // arms: a cube pivoting on an edge sinks by turning, and lifting its centre
   // instead raised its energy by 0.24 mJ per correction (caught by check's
-  // energy rule on cube_drop_edge: +1.8 mJ against 1 mJ allowed).
+  // energy rule on cube_drop_edge: +1.8 mJ against 1 mJ allowed). Solved to
+  // a millionth of the tolerance: at a thousandth, an edge contact's two rows
+  // left a turn of ~1e-6 rad, which a cube balanced on a ridge (an unstable
+  // equilibrium growing at 7.7 /s) turned into 1.3e-6 m/s within a second.
   void correct_positions(const Model& m, std::span<double> y, const std::vector<Row>& rows, const Motions& motion,
                          const std::vector<char>& correct) const {
     const double tol = setup.settings.penetration_tolerance;
@@ -392,7 +395,7 @@ struct Collider {
     for (const auto& r : fix)
       for (const int b : {r.a, r.b})
         if (!pseudo.count(b)) pseudo.emplace(b, Bodies::at_rest(motion.at(b)));
-    solve(fix, pseudo, 1e-3 * tol, counters.correction_cap_hits);  // m: a thousandth of the tolerance
+    solve(fix, pseudo, 1e-6 * tol, counters.correction_cap_hits);  // m: a millionth of the tolerance, see above
     for (const auto& [b, p] : pseudo) Bodies::displace(m, y, static_cast<std::size_t>(b), p);
     for (std::size_t hi = 0; hi < correct.size(); ++hi) counters.corrections += correct[hi];
   }

@@ -72,10 +72,10 @@ Scene base(double duration, double every, double restitution, bool gravity) {
 // the typed one.
 Vec3 typed(const Vec3& x) { return (x * 1e12).array().round() / 1e12; }
 
-ContactCase make(std::string name, ContactKind kind, Scene scene) {
+ContactCase make(std::string name, ContactKind kind, Scene scene, bool long_running = false) {
   scene.name = name;
   for (auto& b : scene.bodies) b.position = typed(b.position);
-  ContactCase c{std::move(name), kind, std::move(scene), "", ""};
+  ContactCase c{std::move(name), kind, std::move(scene), "", "", long_running};
   c.expected = expected_outcome(kind, c.scene);
   c.scene.description = c.expected;
   return c;
@@ -150,7 +150,11 @@ ContactCase stack(int n, bool drop) {
   for (int k = 0; k < n; ++k)
     s.bodies.push_back(box(join({"c", std::to_string(k + 1)}), Vec3(kSize, kSize, kSize), 1,
                            Vec3(0, 0, kSize / 2 + k * kSize + (drop ? (k + 1) * kDrop : 0))));
-  return make(join({"stack/", std::to_string(n), drop ? "/drop=1mm" : "/touching"}), ContactKind::stack, std::move(s));
+  // GACOMPARE_QUICK_TESTS=1 keeps the smallest stack and the issue's own (three
+  // dropped 1 mm) here, and the 5-stack from its bundled file.
+  const bool quick = (n == 2 && !drop) || (n == 3 && drop);
+  return make(join({"stack/", std::to_string(n), drop ? "/drop=1mm" : "/touching"}), ContactKind::stack, std::move(s),
+              !quick);
 }
 
 // The ridge: a static box (length × 0.2 × 0.2) turned 45° about x, its top
