@@ -8,7 +8,7 @@
 //     apart), run and judged by the same evaluate().
 // A bundled case runs once per backend, from its file; the per-case tests skip it.
 // The long stacks (long_running: 10 s of 5 or 10 boxes, and the 1 mm drops but
-// the issue's own three) run too: the whole label takes ~6 s on two cores.
+// the issue's own three) run too: the whole label takes ~8 s on two cores.
 // GACOMPARE_QUICK_TESTS=1 leaves them out (they say so). A case that hangs
 // meets the tests' 120 s timeout.
 // Instantiated by tests/{traditional,cga}/contact_test.cpp; Bullet in
