@@ -151,7 +151,7 @@ void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sampl
 // ---- collisions (§2.4–2.5) ----
 
 // The narrowphase takes the rotor's 3×3 matrix: built once per body per query
-// and applied to every vertex (the outermorphism; DESIGN.md "Fair comparison").
+// and applied to every vertex (the outermorphism; docs/architecture.md "Fair comparison").
 collision::Pose RigidBodies::pose(const Model& m, std::span<const double> y, std::size_t b) {
   (void)m;
   const Layout at = layout(b);

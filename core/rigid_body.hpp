@@ -18,7 +18,7 @@ struct BodyProperties {
 
 // The effects a scene lists, as they act on bodies (read once; every backend
 // applies them in its own algebra): gravity, drag on v and ω, forces at points.
-// Only the listed ones are evaluated (DESIGN: an effect that is not listed
+// Only the listed ones are evaluated (docs/architecture.md: an effect not listed
 // costs nothing): the flags say which are.
 struct BodyEffects {
   bool has_gravity = false, has_linear_drag = false, has_quadratic_drag = false;

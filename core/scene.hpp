@@ -1,7 +1,7 @@
 #pragma once
 // The scene model: a read-only description of what to simulate, loaded once
 // from data/scenes/*.json. Keys and units are the public contract of
-// ../shared/DESIGN.md and issue #2; every backend builds its own state from it.
+// docs/architecture.md and issue #2; every backend builds its own state from it.
 #include <Eigen/Core>
 
 #include <filesystem>

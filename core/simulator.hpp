@@ -1,5 +1,5 @@
 #pragma once
-// The simulator loop, a template over a backend (DESIGN.md "Data flow"): no
+// The simulator loop, a template over a backend (docs/architecture.md "Data flow"): no
 // virtual call sits inside a per-particle or per-vertex loop, so timings compare
 // the mathematics, not the dispatch. Each backend packs its own state into a flat
 // vector of doubles; the loop integrates it, samples it at the output times and
