@@ -25,10 +25,19 @@ struct Simulation {
     std::size_t offset = 0;  // where the bodies' state starts
     std::optional<Contacts> collisions;  // only when the scene lists the effect
     double bounding_seconds = 0;         // building the bounding spheres, once
+    double mass_seconds = 0;             // the bodies' exact mass properties, once
   };
 
   static Model build(const Scene& scene) {
-    Model m{Particles::build(scene), {}, body_properties(scene), 0, std::nullopt, 0};
+    Model m{Particles::build(scene), {}, {}, 0, std::nullopt, 0, 0};
+    if (!scene.bodies.empty()) {
+      Profile once;
+      {
+        ScopedStage timed(once, Stage::mass_properties);
+        m.props = body_properties(scene);
+      }
+      m.mass_seconds = once[Stage::mass_properties].seconds;
+    }
     m.bodies = Bodies::build(scene, m.props);
     m.offset = Particles::state_size(m.particles);
     if (scene.find_effect<Collisions>()) {
@@ -162,6 +171,7 @@ struct Simulation {
   static std::map<std::string, double> metrics(const Model& m) {
     auto out = Particles::metrics(m.particles);
     if (m.collisions) out["bounding_volumes_seconds"] = m.bounding_seconds;
+    if (!m.bodies.bodies.empty()) out["mass_properties_seconds"] = m.mass_seconds;
     return out;
   }
 };
