@@ -129,6 +129,33 @@ double RigidBodies::rotation_drift(const Model& m, std::span<const double> y) {
   return worst;
 }
 
+// The angle of R⁻¹ δR: 2|⟨R̃ δR⟩₂|/|R|² (the bivector of the relative rotor,
+// twice: R = exp(−Bθ/2)). |δΩ| in the body frame, I⁻¹(R̂̃ δL R̂) (a rotation
+// keeps lengths).
+double RigidBodies::error_ratio(const Model& m, std::span<const double> y, std::span<const double> ynew,
+                                std::span<const double> err, double abs, double rel) {
+  double worst = 0;
+  const auto worse = [&](double r) { worst = std::isnan(r) || std::isnan(worst) ? NAN : std::max(worst, r); };
+  const auto length = [](const auto& v) { return std::sqrt(std::abs(scalar_product(v, v))); };
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Body& body = m.bodies[b];
+    if (body.inv_mass == 0) continue;
+    const Layout at = layout(b);
+    const auto ratio = [&](double e, double a, double c) { return e / (abs + rel * std::max(a, c)); };
+    worse(ratio(length(vec_at(err, at.x)), length(vec_at(y, at.x)), length(vec_at(ynew, at.x))));
+    worse(ratio(length(vec_at(err, at.p)), length(vec_at(y, at.p)), length(vec_at(ynew, at.p))));
+    const Rotor3 r1 = rotor_at(ynew, at.rot);
+    const auto relative = reverse(r1) * rotor_at(err, at.rot);
+    const double angle = 2 * length(bivector3(relative[e3::e12], relative[e3::e13], relative[e3::e23])) / norm2(r1);
+    worse(angle / (abs + rel));
+    const Rotor3 u0 = rotor_at(y, at.rot) / std::sqrt(norm2(rotor_at(y, at.rot))), u1 = r1 / std::sqrt(norm2(r1));
+    const double w0 = length(apply(body.inv_inertia, sandwich(reverse(u0), biv_at(y, at.l))));
+    const double w1 = length(apply(body.inv_inertia, sandwich(reverse(u1), biv_at(ynew, at.l))));
+    worse(ratio(length(apply(body.inv_inertia, sandwich(reverse(u1), biv_at(err, at.l)))), w0, w1));
+  }
+  return worst;
+}
+
 void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sample& s) {
   s.bodies.resize(m.bodies.size());
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {

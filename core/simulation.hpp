@@ -10,6 +10,8 @@
 #include "core/particle_system.hpp"
 #include "core/rigid_body.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 
 namespace gacompare::core {
@@ -129,6 +131,22 @@ struct Simulation {
       }
       if (!d.hits.empty()) c.respond(m.bodies, bodies(y), d, t - t0, profile);
     }
+  }
+  // The physical error norm of an adaptive step (core/scene.hpp ErrorNorm):
+  // particles per component (their numbers are positions and velocities
+  // already), each body by its backend.
+  static double error_ratio(const Model& m, const SolverSpec& spec, std::span<const double> y,
+                            std::span<const double> ynew, std::span<const double> err) {
+    double worst = 0;
+    for (std::size_t i = 0; i < m.offset; ++i) {
+      const double r = std::abs(err[i]) / (spec.abs_tol + spec.rel_tol * std::max(std::abs(y[i]), std::abs(ynew[i])));
+      if (std::isnan(r)) return r;
+      worst = std::max(worst, r);
+    }
+    if (m.bodies.bodies.empty()) return worst;
+    const double r = Bodies::error_ratio(m.bodies, y.subspan(m.offset), ynew.subspan(m.offset), err.subspan(m.offset),
+                                         spec.abs_tol, spec.rel_tol);
+    return std::isnan(r) ? r : std::max(worst, r);
   }
   static std::size_t state_size(const Model& m) { return m.offset + Bodies::state_size(m.bodies); }
   static void initial_state(const Model& m, std::span<double> y) {

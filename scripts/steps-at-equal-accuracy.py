@@ -5,7 +5,8 @@ matrix state, on the bundled spinning_top and dzhanibekov scenes (issue #13).
 Each scene runs with Cash-Karp at tolerances 1e-4 ... 1e-11 (abs = rel) in three
 representations; the error is the angle of q^-1 q' between the final
 orientation and that of the same scene at tolerance 1e-14 (traditional,
-quaternion), computed as 2 atan2(|q - q'|, |q + q'|) (accurate to rounding).
+quaternion), computed as 4 atan2(|q - q'|, |q + q'|) with q' signed so that
+q.q' >= 0 (the angle between q and q' as 4-vectors is half the rotation's).
 Each curve (error, steps accepted) is interpolated log-log at the matrix's
 errors, so the ratios compare steps at the same achieved error, not at the
 same tolerance.
@@ -27,7 +28,7 @@ def angle(q, p):
         p = [-x for x in p]
     d = math.sqrt(sum((a - b) ** 2 for a, b in zip(q, p)))
     s = math.sqrt(sum((a + b) ** 2 for a, b in zip(q, p)))
-    return 2 * math.atan2(d, s)
+    return 4 * math.atan2(d, s)
 
 
 def run(gac, tmp, scene, tol, rotation, backend):

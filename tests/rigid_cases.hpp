@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -247,9 +248,56 @@ TYPED_TEST_P(RigidCases, AppliedForcesGiveForceAndTorque) {
   EXPECT_LT((run.samples[2].angular_momentum - run.samples[1].angular_momentum).norm(), 1e-15);
 }
 
+// The physical error norm (issue #13): the same rotation error reads the
+// same in every representation. Two states of one body, turned by θ = 1e-6
+// rad about an oblique axis (or spinning δω = 1e-6 rad/s faster), their
+// difference as the step's error: with abs = 1, rel = 0 the ratio is θ (or
+// |δω|), whatever stores the rotation. The norm reads 2 sin(θ/2) or sin θ
+// from the difference (θ²/24 = 4e-14 relative), and the difference of O(1)
+// components rounds to ~1e-16 of θ = 1e-6, 1e-10 relative: hence 1e-9.
+TYPED_TEST_P(RigidCases, PhysicalErrorNormReadsTheRotationAngle) {
+  using B = typename TypeParam::Backend;
+  const auto state = [](const Eigen::Quaterniond& q, const Eigen::Vector3d& w) {
+    char body[512];
+    std::snprintf(body, sizeof body,
+                  R"({"name": "b", "shape": {"box": [0.1, 0.4, 0.9]}, "mass": 2.0, "position": [1, 2, 3],)"
+                  R"( "orientation": [%.17g, %.17g, %.17g, %.17g], "angular_velocity": [%.17g, %.17g, %.17g]})",
+                  q.w(), q.x(), q.y(), q.z(), w.x(), w.y(), w.z());
+    const core::Scene scene = rigid_scene(body, "", TypeParam::options, 1.0, 0.5,
+                                          R"({"method": "cash_karp45", "dt": 1e-3, "abs_tol": 1, "rel_tol": 0})");
+    auto model = B::build(scene);
+    std::vector<double> y(B::state_size(model));
+    B::initial_state(model, y);
+    return std::make_pair(std::move(model), std::move(y));
+  };
+  const Eigen::Quaterniond q0(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+  const Eigen::Vector3d axis = Eigen::Vector3d(-2, 1, 0.5).normalized(), w0(0.3, -0.2, 0.1);
+  const double theta = 1e-6;
+  const auto [model, y0] = state(q0, w0);
+  const auto check = [&](const std::vector<double>& y1, double expected) {
+    std::vector<double> err(y0.size());
+    for (std::size_t i = 0; i < err.size(); ++i) err[i] = y1[i] - y0[i];
+    const core::SolverSpec spec{core::SolverMethod::cash_karp45, 1e-3, 1.0, 0.0, core::ErrorNorm::physical};
+    EXPECT_NEAR(B::error_ratio(model, spec, y0, y1, err), expected, 1e-9 * expected);
+  };
+  // The world angular velocity stays w0, so L changes with the turn: compare
+  // the turn alone at zero spin, and the spin alone at a fixed orientation.
+  const auto [m_still, y_still] = state(q0, Eigen::Vector3d::Zero());
+  const auto [m_turned, y_turned] = state(Eigen::Quaterniond(Eigen::AngleAxisd(theta, axis)) * q0, Eigen::Vector3d::Zero());
+  {
+    std::vector<double> err(y_still.size());
+    for (std::size_t i = 0; i < err.size(); ++i) err[i] = y_turned[i] - y_still[i];
+    const core::SolverSpec spec{core::SolverMethod::cash_karp45, 1e-3, 1.0, 0.0, core::ErrorNorm::physical};
+    EXPECT_NEAR(B::error_ratio(m_still, spec, y_still, y_turned, err), theta, 1e-9 * theta);
+  }
+  const auto [m_faster, y_faster] = state(q0, w0 + theta * axis);
+  check(y_faster, theta);
+}
+
 REGISTER_TYPED_TEST_SUITE_P(RigidCases, AppliedForcesGiveForceAndTorque, FreeFlightFollowsTheParabolaAndKeepsItsSpin,
                             DzhanibekovFlipMatchesTheEllipticPeriod, SymmetricTopPrecessesAtLOverI,
                             RotationDriftGrowsWithoutRenormalisationAndNotWithIt,
-                            EulerDistortsTheRotationAsTheReportSaw, ExtremeInertiaAndMassesStayFiniteAndConservative);
+                            EulerDistortsTheRotationAsTheReportSaw, ExtremeInertiaAndMassesStayFiniteAndConservative,
+                            PhysicalErrorNormReadsTheRotationAngle);
 
 }  // namespace gacompare::testing

@@ -158,6 +158,38 @@ double RigidBodies::rotation_drift(const Model& m, std::span<const double> y) {
   return worst;
 }
 
+// The angle of R⁻¹ δR: for a matrix the axial vector of the antisymmetric part
+// of Rᵀ δR (its symmetric part is stretch, the drift renormalise is for); for
+// a quaternion 2 vec(q* δq)/|q|². |δω| in the body frame, I⁻¹ Rᵀ δL (a rotation
+// keeps lengths), with R normalised as everywhere else.
+double RigidBodies::error_ratio(const Model& m, std::span<const double> y, std::span<const double> ynew,
+                                std::span<const double> err, double abs, double rel) {
+  double worst = 0;
+  const auto worse = [&](double r) { worst = std::isnan(r) || std::isnan(worst) ? NAN : std::max(worst, r); };
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Body& body = m.bodies[b];
+    if (body.inv_mass == 0) continue;
+    const Layout at = layout(m, b);
+    const auto ratio = [&](double e, double a, double c) { return e / (abs + rel * std::max(a, c)); };
+    worse(ratio(vec_at(err, at.x).norm(), vec_at(y, at.x).norm(), vec_at(ynew, at.x).norm()));
+    worse(ratio(vec_at(err, at.p).norm(), vec_at(y, at.p).norm(), vec_at(ynew, at.p).norm()));  // δP/m over |P|/m
+    double angle;
+    if (m.rotation == core::Rotation::matrix) {
+      const Mat a = matrix_at(ynew, at.rot).transpose() * matrix_at(err, at.rot);
+      angle = 0.5 * Vec(a(2, 1) - a(1, 2), a(0, 2) - a(2, 0), a(1, 0) - a(0, 1)).norm();
+    } else {
+      const Eigen::Quaterniond q = quat_at(ynew, at.rot);
+      angle = 2 * (q.conjugate() * quat_at(err, at.rot)).vec().norm() / q.squaredNorm();
+    }
+    worse(angle / (abs + rel));
+    const Mat r0 = rotation(m, y, at), r1 = rotation(m, ynew, at);
+    const Vec w0 = body.inv_inertia * (r0.transpose() * vec_at(y, at.l));
+    const Vec w1 = body.inv_inertia * (r1.transpose() * vec_at(ynew, at.l));
+    worse(ratio((body.inv_inertia * (r1.transpose() * vec_at(err, at.l))).norm(), w0.norm(), w1.norm()));
+  }
+  return worst;
+}
+
 void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sample& s) {
   s.bodies.resize(m.bodies.size());
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
