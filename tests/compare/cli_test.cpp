@@ -145,7 +145,8 @@ TEST(Cli, CheckPassesOnAFreshBaselineAndFailsOnADoctoredOne) {
 
   // Move one particle's stored final position by 1 µm: beyond the 1e-9 m tolerance.
   json j = read_json(file);
-  j["runs"][1]["final"]["particles"]["shot"][0] = j["runs"][1]["final"]["particles"]["shot"][0].get<double>() + 1e-6;
+  auto& shot = j["runs"][1]["final"]["particles"]["shot"];
+  shot["position"][0] = shot["position"][0].get<double>() + 1e-6;
   write_text(file, j.dump());
   const Result doctored = gacompare("check " + kScene + " --baseline " + dir.string() + " --quiet");
   EXPECT_EQ(doctored.code, 1) << doctored.out;
