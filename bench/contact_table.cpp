@@ -5,11 +5,13 @@
 // tolerance); the reasons for the failures follow the table. Markdown on stdout,
 // progress on stderr.
 //
-//   build/release/bench/contact_table [--filter TEXT] [--backends traditional,cga,bullet] [--max-duration S]
+//   build/release/bench/contact_table [--filter TEXT] [--backends traditional,cga,bullet]
+//                                     [--max-duration S] [--method manifold|report]
 //
 // --filter keeps the cases whose name contains TEXT; --max-duration shortens
 // every case to at most S simulated seconds (the table says so: a shortened
-// stack is judged on its shorter run).
+// stack is judged on its shorter run); --method sets how our backends find
+// contacts (the collisions effect's "method"; Bullet has its own).
 #include "cga/backend.hpp"
 #include "compare/bullet_world.hpp"
 #include "core/contact_family.hpp"
@@ -42,7 +44,8 @@ std::string cell(const core::ContactVerdict& v) {
 }
 
 int usage() {
-  std::fprintf(stderr, "usage: contact_table [--filter TEXT] [--backends traditional,cga,bullet] [--max-duration S]\n");
+  std::fprintf(stderr, "usage: contact_table [--filter TEXT] [--backends traditional,cga,bullet] [--max-duration S] "
+                       "[--method manifold|report]\n");
   return 2;
 }
 
@@ -52,6 +55,7 @@ int main(int argc, char** argv) {
   std::string filter, command = "contact_table";
   std::vector<std::string> backends{"traditional", "cga", "bullet"};
   double max_duration = 0;
+  core::ContactMethod method = core::ContactMethod::manifold;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (i + 1 >= argc) return usage();
@@ -61,6 +65,9 @@ int main(int argc, char** argv) {
       filter = value;
     } else if (arg == "--max-duration") {
       max_duration = std::atof(value.c_str());
+    } else if (arg == "--method") {
+      if (value != "manifold" && value != "report") return usage();
+      method = value == "report" ? core::ContactMethod::report : core::ContactMethod::manifold;
     } else if (arg == "--backends") {
       backends.clear();
       std::stringstream list(value);
@@ -90,6 +97,8 @@ int main(int argc, char** argv) {
     ++cases;
     core::Scene scene = c.scene;
     if (max_duration > 0 && scene.duration > max_duration) scene.duration = max_duration;
+    for (auto& e : scene.effects)
+      if (auto* k = std::get_if<core::Collisions>(&e)) k->method = method;
     std::printf("| %s%s |", c.name.c_str(), c.bundled.empty() ? "" : (" (" + c.bundled + ")").c_str());
     for (const auto& b : backends) {
       std::fprintf(stderr, "%s %s\n", c.name.c_str(), b.c_str());

@@ -8,7 +8,7 @@
 // sphere_through). Each iteration processes the next case of a 1024-case ring.
 //
 // Names: BM_<operation>/cga and BM_<operation>/traditional. For the ratio table,
-// run interleaved and repeated and compare medians (DESIGN.md "Measuring"):
+// run interleaved and repeated and compare medians (docs/architecture.md "Measuring"):
 //   ./geometry_bench --benchmark_repetitions=10 --benchmark_enable_random_interleaving=true
 //       --benchmark_report_aggregates_only=true --benchmark_format=json > geometry_bench.json
 // (one command line).
@@ -108,7 +108,7 @@ void register_all() {
   GEOMETRY_PAIR(reflect_in_line, C::reflect_in_line(D.x[i], D.cl[i]), T::reflect_in_line(D.x[i], D.tl[i]));
   GEOMETRY_PAIR(nearest_on_line, C::nearest_on_line(D.x[i], D.cl[i]), T::nearest_on_line(D.x[i], D.tl[i]));
   GEOMETRY_PAIR(side, C::side(D.cs1[i], D.x[i]), T::side(D.ts1[i], D.x[i]));
-  // The report's sandwich form of the vector reflections (DESIGN.md "Fair
+  // The report's sandwich form of the vector reflections (docs/architecture.md "Fair
   // comparison": time the pure form as well as the best one).
   benchmark::RegisterBenchmark("BM_reflect_in_plane/cga_sandwich", [](benchmark::State& st) {
     ring(st, [](const Data& D, std::size_t i) { return C::reflect_in_plane_by_sandwich(D.x[i], D.cp1[i]); });

@@ -4,7 +4,7 @@
 //               derivatives, each with its `forces` stage timer, and the update)
 //   vertices    moving a 1,000-vertex mesh into the world: R v + x for each vertex,
 //               with R a matrix, a quaternion, a rotor sandwich, or the rotor's
-//               matrix built once per body (the outermorphism, DESIGN.md "Fair
+//               matrix built once per body (the outermorphism, docs/architecture.md "Fair
 //               comparison")
 // Names BM_<stage>/<representation>; scripts/bench-ratios.py --reference matrix
 // prints the README's ratio table.

@@ -8,7 +8,7 @@
 //
 // The rotation reaches the vertices as the rotor's 3×3 matrix, applied once
 // per vertex: the outermorphism form that is GA's best practice for many
-// points (DESIGN.md, "Fair comparison"); bench/rigid_bench times the sandwich.
+// points (docs/architecture.md, "Fair comparison"); bench/rigid_bench times the sandwich.
 #include "cga/algebra/cl3.hpp"
 #include "cga/geometry/entities.hpp"
 #include "cga/segment_triangle.hpp"

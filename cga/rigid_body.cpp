@@ -80,19 +80,34 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     if (body.inv_mass == 0) continue;  // static: never moves
     const Vector3 v = body.inv_mass * vec_at(y, at.p);
     const Rotor3 r = rotor_at(y, at.rot);
-    const Bivector3 L = biv_at(y, at.l);
-    const Bivector3 omega = sandwich(r, apply(body.inv_inertia, sandwich(reverse(r), L)));  // §2.3.2
-    const double speed = std::sqrt(scalar_product(v, v)), spin = std::sqrt(-scalar_product(omega, omega));
-    Vector3 force = body.mass * vector3(m.effects.gravity) - m.effects.linear_k * v - (m.effects.quadratic_k * speed) * v;
-    Bivector3 torque = -m.effects.linear_k_angular * omega - (m.effects.quadratic_k_angular * spin) * omega;
-    for (const auto& push : m.effects.pushes)
+    const Rotor3 unit = r / std::sqrt(norm2(r));
+    // Ω_body from the normalised rotor (issue #13). With R itself, R̃ L R and
+    // the sandwich back to Ω each scale as |R|², so a drifting norm changed
+    // the rotation rate as |R|⁴ and the error control paid for it in steps
+    // (2.0× the matrix's steps at equal orientation error on the spinning
+    // top). Ṙ = −½ Ω R = −½ R Ω_body (Ω R = R Ω_body R̃ R) then scales as |R|,
+    // as the quaternion's q̇ = ½ ω q does, and costs one sandwich, not two.
+    const Bivector3 omega_body = apply(body.inv_inertia, sandwich(reverse(unit), biv_at(y, at.l)));
+    const core::BodyEffects& fx = m.effects;
+    Vector3 force{};
+    Bivector3 torque{};
+    if (fx.has_gravity) force += body.mass * vector3(fx.gravity);
+    if (fx.has_linear_drag || fx.has_quadratic_drag) {
+      const Bivector3 omega = sandwich(unit, omega_body);  // §2.3.2: Ω = R Ω_body R̃
+      if (fx.has_linear_drag) force -= fx.linear_k * v, torque -= fx.linear_k_angular * omega;
+      if (fx.has_quadratic_drag) {
+        const double speed = std::sqrt(scalar_product(v, v)), spin = std::sqrt(-scalar_product(omega, omega));
+        force -= (fx.quadratic_k * speed) * v, torque -= (fx.quadratic_k_angular * spin) * omega;
+      }
+    }
+    for (const auto& push : fx.pushes)
       if (push.body == b && t >= push.from && t < push.until) {
         const Vector3 f = vector3(push.force);
         force += f;
-        torque += sandwich(r, vector3(push.point)) ^ f;  // τ = (R p R̃) ∧ F
+        torque += sandwich(unit, vector3(push.point)) ^ f;  // τ = (R p R̃) ∧ F
       }
     put(dydt, at.x, v);
-    put(dydt, at.rot, -0.5 * (omega * r));  // eq. 35
+    put(dydt, at.rot, -0.5 * (r * omega_body));  // eq. 35
     put(dydt, at.p, force);
     put(dydt, at.l, torque);
   }
@@ -114,6 +129,33 @@ double RigidBodies::rotation_drift(const Model& m, std::span<const double> y) {
   return worst;
 }
 
+// The angle of R⁻¹ δR: 2|⟨R̃ δR⟩₂|/|R|² (the bivector of the relative rotor,
+// twice: R = exp(−Bθ/2)). |δΩ| in the body frame, I⁻¹(R̂̃ δL R̂) (a rotation
+// keeps lengths).
+double RigidBodies::error_ratio(const Model& m, std::span<const double> y, std::span<const double> ynew,
+                                std::span<const double> err, double abs, double rel) {
+  double worst = 0;
+  const auto worse = [&](double r) { worst = std::isnan(r) || std::isnan(worst) ? NAN : std::max(worst, r); };
+  const auto length = [](const auto& v) { return std::sqrt(std::abs(scalar_product(v, v))); };
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Body& body = m.bodies[b];
+    if (body.inv_mass == 0) continue;
+    const Layout at = layout(b);
+    const auto ratio = [&](double e, double a, double c) { return e / (abs + rel * std::max(a, c)); };
+    worse(ratio(length(vec_at(err, at.x)), length(vec_at(y, at.x)), length(vec_at(ynew, at.x))));
+    worse(ratio(length(vec_at(err, at.p)), length(vec_at(y, at.p)), length(vec_at(ynew, at.p))));
+    const Rotor3 r1 = rotor_at(ynew, at.rot);
+    const auto relative = reverse(r1) * rotor_at(err, at.rot);
+    const double angle = 2 * length(bivector3(relative[e3::e12], relative[e3::e13], relative[e3::e23])) / norm2(r1);
+    worse(angle / (abs + rel));
+    const Rotor3 u0 = rotor_at(y, at.rot) / std::sqrt(norm2(rotor_at(y, at.rot))), u1 = r1 / std::sqrt(norm2(r1));
+    const double w0 = length(apply(body.inv_inertia, sandwich(reverse(u0), biv_at(y, at.l))));
+    const double w1 = length(apply(body.inv_inertia, sandwich(reverse(u1), biv_at(ynew, at.l))));
+    worse(ratio(length(apply(body.inv_inertia, sandwich(reverse(u1), biv_at(err, at.l)))), w0, w1));
+  }
+  return worst;
+}
+
 void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sample& s) {
   s.bodies.resize(m.bodies.size());
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
@@ -127,7 +169,8 @@ void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sampl
     out.position = to_eigen(vec_at(y, at.x));
     out.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
     out.velocity = to_eigen(body.inv_mass * vec_at(y, at.p));
-    out.angular_velocity = to_eigen(axial(sandwich(r, apply(body.inv_inertia, sandwich(reverse(r), biv_at(y, at.l))))));
+    const Rotor3 unit = r / std::sqrt(norm2(r));
+    out.angular_velocity = to_eigen(axial(sandwich(unit, apply(body.inv_inertia, sandwich(reverse(unit), biv_at(y, at.l))))));
   }
   s.rotation_drift = rotation_drift(m, y);
 }
@@ -135,7 +178,7 @@ void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sampl
 // ---- collisions (§2.4–2.5) ----
 
 // The narrowphase takes the rotor's 3×3 matrix: built once per body per query
-// and applied to every vertex (the outermorphism; DESIGN.md "Fair comparison").
+// and applied to every vertex (the outermorphism; docs/architecture.md "Fair comparison").
 collision::Pose RigidBodies::pose(const Model& m, std::span<const double> y, std::size_t b) {
   (void)m;
   const Layout at = layout(b);
@@ -152,11 +195,12 @@ RigidBodies::Motion RigidBodies::motion(const Model& m, std::span<const double> 
   const Body& body = m.bodies[b];
   const Layout at = layout(b);
   const Rotor3 r = rotor_at(y, at.rot);
+  const Rotor3 unit = r / std::sqrt(norm2(r));
   Mat s;
   for (int k = 0; k < 3; ++k) {
     Bivector3 e{};
     e.c[static_cast<std::size_t>(k)] = 1;
-    const Bivector3 turned = sandwich(r, e);
+    const Bivector3 turned = sandwich(unit, e);
     s.col(k) = Eigen::Vector3d(turned.c[0], turned.c[1], turned.c[2]);
   }
   Motion out;

@@ -53,6 +53,12 @@ struct RigidBodies {
   static void observe(const Model& m, std::span<const double> y, core::Sample& s);
   // max over bodies of |R R̃ − 1|: how far the stored rotor has drifted from a rotor.
   static double rotation_drift(const Model& m, std::span<const double> y);
+  // The physical error norm of an adaptive step (issue #13; core/scene.hpp
+  // ErrorNorm): per body, |δx|, |δv|, the rotation angle of R⁻¹ δR and |δω|,
+  // each over abs + rel·|value| (the angle over abs + rel: a rotation has no
+  // size of its own); the worst ratio, NaN when the step is not finite.
+  static double error_ratio(const Model& m, std::span<const double> y, std::span<const double> ynew,
+                            std::span<const double> err, double abs, double rel);
 
   // --- collisions (§2.4–2.5); called only when the scene lists the effect ---
   // The pose the narrowphase places the mesh with (centre of mass, rotation).

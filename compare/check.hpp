@@ -2,7 +2,9 @@
 // `gacompare check`: regression checks between backends and against stored
 // results. A scene fails when its backends diverge beyond its bound, an
 // invariant drifts past a bound the scene states, a run stops early, or a final
-// state moves from the stored baseline. Timing against the baseline is reported
+// state moves from the stored baseline. Divergence and baseline are measured in
+// position, orientation, velocity and angular velocity, each bounded by the
+// scene's distance (max_divergence, baseline_tolerance) as check.cpp derives it. Timing against the baseline is reported
 // as a ratio and never fails: these machines are noisy.
 #include "compare/runner.hpp"
 
@@ -23,7 +25,9 @@ struct CheckLine {
 };
 
 // What --update stores for a scene: its hash, and per backend the final sample
-// (particle and body positions, body orientations) and the median wall time.
+// (particle positions and velocities; body positions, orientations, velocities
+// and angular velocities) and the median wall time. check_scene also reads the
+// first format (a particle as its position alone, bodies without velocities).
 nlohmann::ordered_json baseline_json(const SceneResult& r);
 
 // The checks of one scene; `baseline` is the stored baseline (nullopt: none kept).

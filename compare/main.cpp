@@ -157,7 +157,9 @@ nlohmann::ordered_json sweep_manifest(const core::Scene& scene, const compare::S
   nlohmann::ordered_json ids = nlohmann::ordered_json::array();
   for (const auto& u : units) ids.push_back(u.id);
   return {{"scene_file", fs::absolute(scene.file).string()}, {"scene_sha256", scene.sha256},
-          {"repeats", spec.repeats}, {"max_duration", spec.max_duration}, {"units", ids}};
+          {"repeats", spec.repeats}, {"max_duration", spec.max_duration},
+          {"error", spec.error ? std::string(compare::measure_name(*spec.error)) : std::string("default")},
+          {"units", ids}};
 }
 
 std::vector<nlohmann::json> read_units(const fs::path& cells, const std::vector<compare::Unit>& units,
@@ -173,7 +175,7 @@ std::vector<nlohmann::json> read_units(const fs::path& cells, const std::vector<
     }
     try {
       auto j = nlohmann::json::parse(in);
-      if (j.value("scene_sha256", "") != sha) {
+      if (!compare::cell_is_current(j, sha)) {  // another scene, or an older format: run it again
         ++missing;
         continue;
       }
@@ -246,6 +248,7 @@ int merge_sweeps(const std::vector<std::string>& dirs, const fs::path& out) {
   compare::SweepSpec spec;
   spec.repeats = manifest.at("repeats");
   spec.max_duration = manifest.at("max_duration");
+  spec.error = compare::measure_from_string(manifest.value("error", "default"));  // the shards' --error
   const core::Scene swept = compare::swept_scene(scene, spec);
   std::size_t missing = 0;
   const auto done = read_units(out / "cells", units, swept.sha256, missing);
@@ -344,6 +347,7 @@ int main(int argc, char** argv) {
   int sw_repeat = 3;
   double sw_max_duration = 0;
   bool sw_no_peer = false;
+  std::string sw_error;
   auto* sw = app.add_subcommand("sweep", "what accuracy costs in time: every solver x tolerance or step x backend");
   sw->add_option("scene", sw_scene, "scene file (JSON)")->required();
   sw->add_option("--out", sw_out, "sweep folder (cells/, sweep.md, sweep.csv, the diagram)")->required();
@@ -354,6 +358,10 @@ int main(int argc, char** argv) {
   sw->add_option("--max-duration", sw_max_duration, "cut the scene to this many seconds")->check(CLI::PositiveNumber);
   sw->add_option("--shard", sw_shard, "run every N-th unit, starting at i: i/N (join with merge)");
   sw->add_flag("--no-peer", sw_no_peer, "leave out Boost.Odeint's Cash-Karp");
+  sw->add_option("--error", sw_error,
+                 "the diagram's x-axis, the error at the end: position|orientation|velocity|angular_velocity "
+                 "(default: orientation for a scene of bodies, position with particles)")
+      ->check(CLI::IsMember({"position", "orientation", "velocity", "angular_velocity"}));
 
   std::vector<std::string> mg_dirs;
   std::string mg_out;
@@ -414,8 +422,12 @@ int main(int argc, char** argv) {
       spec.repeats = sw_repeat;
       spec.max_duration = sw_max_duration;
       spec.peer = !sw_no_peer;
+      if (!sw_error.empty()) spec.error = compare::measure_from_string(sw_error);
       const auto shard = parse_shard(sw_shard);
-      return run_sweep(core::load_scene(sw_scene), spec, sw_out, shard, quiet);
+      const core::Scene scene = core::load_scene(sw_scene);
+      if (spec.error && compare::body_only(*spec.error) && scene.bodies.empty())
+        throw input_error("--error " + sw_error + ": the scene '" + scene.name + "' has no bodies");
+      return run_sweep(scene, spec, sw_out, shard, quiet);
     }
     if (*mg) return merge_sweeps(mg_dirs, mg_out);
     if (*list) return list_scenes(list_dir);

@@ -1,6 +1,7 @@
 // report.html: one self-contained page per report folder — the tables of
 // report.md (converted from it, so the two never disagree) and inline SVG figures
 // drawn by gnuplot: invariants and divergence between backends over time.
+#include "compare/metrics.hpp"
 #include "compare/plot.hpp"
 #include "compare/report.hpp"
 #include "compare/results.hpp"
@@ -133,17 +134,24 @@ Plot over_time(const SceneResult& r, const std::string& title, const std::string
   return p;
 }
 
-// diff(first backend's sample, another backend's) over time, one series per other backend.
-Plot divergence_over_time(const SceneResult& r, const std::string& title, const std::string& ylabel,
-                          double (*diff)(const core::Sample&, const core::Sample&)) {
-  Plot p{r.scene.name + ": " + title, "t (s)", ylabel + "; below 1e-17 drawn at 1e-17)", false, true, {}, {}};
+// Measure m (compare/metrics.hpp: the functions check and sweep use) between the
+// first backend's samples and each other's over time, one series per other backend.
+Plot divergence_over_time(const SceneResult& r, Measure m) {
+  const std::string words(measure_words(m));
+  Plot p{r.scene.name + ": " + (m == Measure::position ? std::string("divergence") : words + " divergence") +
+             " between backends",
+         "t (s)",
+         (m == Measure::orientation ? std::string("largest rotation angle of q⁻¹q′")
+                                    : "largest " + words + " difference") +
+             " (" + std::string(measure_unit(m)) + "; below 1e-17 drawn at 1e-17)",
+         false, true, {}, {}};
   for (std::size_t b = 1; b < r.backends.size(); ++b) {
     Series s{r.backends[b].run.backend + " − " + r.backends[0].run.backend, {}, {}, false};
     const auto& a = r.backends[0].run.samples;
     const auto& c = r.backends[b].run.samples;
     for (std::size_t k = 0; k < std::min(a.size(), c.size()); ++k) {
       s.x.push_back(a[k].t);
-      s.y.push_back(std::max(kFloor, diff(a[k], c[k])));
+      s.y.push_back(std::max(kFloor, state_difference(a[k], c[k])[m]));
     }
     p.series.push_back(s);
   }
@@ -168,13 +176,9 @@ std::string figures(const SceneResult& r) {
   if (bodies)
     plots.push_back(over_time(r, "rotation drift", "distance of the stored rotation from a rotation",
                               [](const core::Sample&, const core::Sample& s) { return s.rotation_drift; }));
-  if (r.backends.size() > 1) {
-    plots.push_back(divergence_over_time(r, "divergence between backends", "largest position difference (m",
-                                         position_difference));
-    if (bodies)
-      plots.push_back(divergence_over_time(r, "orientation divergence between backends",
-                                           "largest angle between orientations (rad", orientation_difference));
-  }
+  if (r.backends.size() > 1)
+    for (const Measure m : kMeasures)
+      if (bodies || !body_only(m)) plots.push_back(divergence_over_time(r, m));
   // Stage times: median seconds per stage, a bar per backend.
   Plot bars{r.scene.name + ": stage times", "stage", "seconds (median over repeats)", false, false, {}, {}};
   std::vector<core::Stage> ran;

@@ -71,53 +71,6 @@ json run_json(const core::Scene& scene, const BackendResult& b) {
 }
 }  // namespace
 
-double energy_drift(const core::Run& run) {
-  if (run.samples.empty()) return 0;
-  const double e0 = run.samples.front().kinetic + run.samples.front().potential;
-  double worst = 0, scale = std::abs(e0);
-  for (const auto& s : run.samples) {
-    worst = std::max(worst, std::abs(s.kinetic + s.potential - e0));
-    scale = std::max({scale, std::abs(s.kinetic), std::abs(s.potential)});
-  }
-  return scale > 0 ? worst / scale : 0.0;
-}
-
-double position_difference(const core::Sample& a, const core::Sample& b) {
-  double worst = 0;
-  for (std::size_t i = 0; i < a.particles.size(); ++i)
-    worst = std::max(worst, (a.particles[i].position - b.particles[i].position).norm());
-  for (std::size_t i = 0; i < a.bodies.size(); ++i)
-    worst = std::max(worst, (a.bodies[i].position - b.bodies[i].position).norm());
-  return worst;
-}
-
-double orientation_difference(const core::Sample& a, const core::Sample& b) {
-  double worst = 0;
-  for (std::size_t i = 0; i < a.bodies.size(); ++i)
-    worst = std::max(worst, 2 * std::acos(std::min(1.0, std::abs(a.bodies[i].orientation.dot(b.bodies[i].orientation)))));
-  return worst;
-}
-
-namespace {
-// The largest `diff` between the first backend and each other one, over all
-// samples. Bullet is left out: it is a reference with another integrator and
-// contact model, not a third algebra (its agreement is the report's Bullet
-// table), and the divergence is what `check` bounds between our backends.
-double max_over_runs(const SceneResult& r, double (*diff)(const core::Sample&, const core::Sample&)) {
-  double worst = 0;
-  for (std::size_t b = 1; b < r.backends.size(); ++b) {
-    if (r.backends[b].run.backend == "bullet") continue;
-    const auto& a = r.backends[0].run.samples;
-    const auto& c = r.backends[b].run.samples;
-    for (std::size_t k = 0; k < std::min(a.size(), c.size()); ++k) worst = std::max(worst, diff(a[k], c[k]));
-  }
-  return worst;
-}
-}  // namespace
-
-double max_divergence(const SceneResult& r) { return max_over_runs(r, position_difference); }
-double max_orientation_divergence(const SceneResult& r) { return max_over_runs(r, orientation_difference); }
-
 nlohmann::ordered_json results_json(const SceneResult& r, const MachineInfo& machine, int repeats) {
   json runs = json::array();
   for (const auto& b : r.backends) runs.push_back(run_json(r.scene, b));

@@ -25,11 +25,20 @@ core::Run run_backend(const core::Scene& scene, std::string_view backend) {
 }
 
 namespace {
+// Bit for bit: every particle's position and velocity and every body's
+// position, orientation, velocity and angular velocity (issue #13: bodies were
+// left out, so a rigid scene was always "deterministic").
 bool same_state(const core::Sample& a, const core::Sample& b) {
-  if (a.t != b.t || a.particles.size() != b.particles.size()) return false;
+  if (a.t != b.t || a.particles.size() != b.particles.size() || a.bodies.size() != b.bodies.size()) return false;
   for (std::size_t i = 0; i < a.particles.size(); ++i)
     if (a.particles[i].position != b.particles[i].position || a.particles[i].velocity != b.particles[i].velocity)
       return false;
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    const auto &x = a.bodies[i], &y = b.bodies[i];
+    if (x.position != y.position || x.orientation != y.orientation || x.velocity != y.velocity ||
+        x.angular_velocity != y.angular_velocity)
+      return false;
+  }
   return true;
 }
 }  // namespace

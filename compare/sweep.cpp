@@ -2,6 +2,7 @@
 
 #include "cga/backend.hpp"
 #include "compare/machine.hpp"
+#include "compare/metrics.hpp"
 #include "compare/plot.hpp"
 #include "compare/report.hpp"
 #include "compare/stats.hpp"
@@ -29,41 +30,55 @@ std::string fmt(const char* f, double x) {
   return buf;
 }
 
-// Largest position distance at the final time, and the RMS over all samples.
-std::pair<double, double> errors(const core::Run& run, const core::Run& ref) {
-  double sum = 0, last = 0;
-  std::size_t n = 0;
-  for (std::size_t k = 0; k < std::min(run.samples.size(), ref.samples.size()); ++k) {
-    double worst = 0;
-    auto add = [&](const core::Vec3& a, const core::Vec3& b) {
-      const double d = (a - b).norm();
-      worst = std::max(worst, d);
-      sum += d * d;
-      ++n;
-    };
-    for (std::size_t i = 0; i < ref.samples[k].particles.size(); ++i)
-      add(run.samples[k].particles[i].position, ref.samples[k].particles[i].position);
-    for (std::size_t i = 0; i < ref.samples[k].bodies.size(); ++i)
-      add(run.samples[k].bodies[i].position, ref.samples[k].bodies[i].position);
-    last = worst;
+// Per measure, the largest error over particles and bodies at the final time and
+// the RMS over every sample and moving object (a static body, never moved, would
+// only dilute it); infinite where the run stopped early.
+struct Errors {
+  StateErrors final, rms;
+};
+
+Errors errors(const core::Scene& scene, const core::Run& run, const core::Run& ref) {
+  StateErrors sum, count;
+  Errors e;
+  auto add = [&](const StateErrors& d, bool body) {
+    for (const Measure m : kMeasures)
+      if (body || !body_only(m)) sum[m] += d[m] * d[m], count[m] += 1;
+  };
+  const std::size_t n = std::min(run.samples.size(), ref.samples.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto &a = run.samples[k], &b = ref.samples[k];
+    for (std::size_t i = 0; i < std::min(a.particles.size(), b.particles.size()); ++i)
+      add(particle_difference(a.particles[i], b.particles[i]), false);
+    for (std::size_t i = 0; i < std::min(a.bodies.size(), b.bodies.size()); ++i)
+      if (!scene.bodies[i].is_static) add(body_difference(a.bodies[i], b.bodies[i]), true);
+    if (k + 1 == n) e.final = state_difference(a, b);
   }
   const bool complete = run.samples.size() == ref.samples.size() && !run.error;
-  return {complete ? last : INFINITY, complete && n ? std::sqrt(sum / static_cast<double>(n)) : INFINITY};
+  for (const Measure m : kMeasures) {
+    e.rms[m] = complete && count[m] > 0 ? std::sqrt(sum[m] / count[m]) : INFINITY;
+    if (!complete) e.final[m] = INFINITY;
+  }
+  return e;
 }
 
-// The error of not simulating at all: how far anything ever gets from its start
-// (the end alone would do for a projectile, not for an orbit that closes). A cell
-// worse than this has diverged and is never on the Pareto front.
-double error_of_nothing(const core::Run& ref) {
-  double worst = 0;
-  for (const auto& s : ref.samples) {
-    for (std::size_t i = 0; i < s.particles.size(); ++i)
-      worst = std::max(worst, (s.particles[i].position - ref.samples.front().particles[i].position).norm());
-    for (std::size_t i = 0; i < s.bodies.size(); ++i)
-      worst = std::max(worst, (s.bodies[i].position - ref.samples.front().bodies[i].position).norm());
-  }
+// The error of not simulating at all: how far anything ever gets from its start,
+// per measure (the end alone would do for a projectile, not for an orbit that
+// closes). A cell worse than this has diverged and is never on the Pareto front.
+StateErrors error_of_nothing(const core::Run& ref) {
+  StateErrors worst;
+  for (const auto& s : ref.samples) worst.take(state_difference(s, ref.samples.front()));
   return worst;
 }
+
+// The measures a scene has: orientation and angular velocity need a body.
+std::vector<Measure> measures_of(const core::Scene& s) {
+  std::vector<Measure> out;
+  for (const Measure m : kMeasures)
+    if (!body_only(m) || !s.bodies.empty()) out.push_back(m);
+  return out;
+}
+
+json number_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 
 template <class B>
 core::Run timed(const core::Scene& s, std::vector<double>& seconds) {
@@ -101,11 +116,14 @@ core::Run odeint_run(const core::Scene& s, double tol, std::vector<double>& seco
   return run;
 }
 
-json cell(const std::string& backend, const core::Run& run, const core::Run& ref, const std::vector<double>& secs) {
-  const auto [final_error, rms] = errors(run, ref);
+json cell(const std::string& backend, const core::Scene& scene, const core::Run& run, const core::Run& ref,
+          const std::vector<double>& secs) {
+  const Errors e = errors(scene, run, ref);
+  json errs = json::object();
+  for (const Measure m : measures_of(scene))
+    errs[std::string(measure_name(m))] = {{"final", number_or_null(e.final[m])}, {"rms", number_or_null(e.rms[m])}};
   json c = {{"backend", backend},
-            {"error_final", std::isfinite(final_error) ? json(final_error) : json(nullptr)},
-            {"error_rms", std::isfinite(rms) ? json(rms) : json(nullptr)},
+            {"errors", errs},
             {"seconds", secs},
             {"steps", run.solver.steps_accepted},
             {"derivative_evaluations", run.solver.derivative_evaluations}};
@@ -164,7 +182,7 @@ json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& ref, 
     odeint_run(s, unit.spec.abs_tol, warm);
     core::Run run;
     for (int r = 0; r < spec.repeats; ++r) run = odeint_run(s, unit.spec.abs_tol, secs);
-    cells.push_back(cell("traditional", run, ref, secs));
+    cells.push_back(cell("traditional", s, run, ref, secs));
   } else {
     std::vector<double> warm, st, sc;
     try {
@@ -180,38 +198,60 @@ json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& ref, 
           rt = timed<traditional::Backend>(s, st);
         }
       }
-      cells.push_back(cell("traditional", rt, ref, st));
-      cells.push_back(cell("cga", rc, ref, sc));
+      cells.push_back(cell("traditional", s, rt, ref, st));
+      cells.push_back(cell("cga", s, rc, ref, sc));
     } catch (const Error& e) {  // a setting this scene refuses (a split solver with bodies)
       for (const char* b : {"traditional", "cga"})
-        cells.push_back({{"backend", b}, {"error_final", nullptr}, {"error_rms", nullptr}, {"seconds", json::array()},
+        cells.push_back({{"backend", b}, {"errors", json::object()}, {"seconds", json::array()},
                          {"steps", 0}, {"derivative_evaluations", 0}, {"failure", e.what()}});
     }
   }
-  return {{"unit", unit.id}, {"solver", unit.solver}, {"setting", unit.setting}, {"scene_sha256", swept.sha256},
-          {"error_of_nothing", error_of_nothing(ref)}, {"cells", cells}};
+  json nothing = json::object();
+  const StateErrors n = error_of_nothing(ref);
+  for (const Measure m : measures_of(swept)) nothing[std::string(measure_name(m))] = n[m];
+  return {{"format", kSweepCellFormat}, {"unit", unit.id}, {"solver", unit.solver}, {"setting", unit.setting},
+          {"scene_sha256", swept.sha256}, {"error_of_nothing", nothing}, {"cells", cells}};
+}
+
+Measure default_error(const core::Scene& scene) {
+  return !scene.bodies.empty() && scene.particles.empty() ? Measure::orientation : Measure::position;
+}
+
+bool cell_is_current(const nlohmann::json& record, const std::string& scene_sha256) {
+  return record.value("format", 1) == kSweepCellFormat && record.value("scene_sha256", "") == scene_sha256;
 }
 
 void write_sweep_report(const std::filesystem::path& dir, const core::Scene& scene,
                         const std::vector<nlohmann::json>& units, const SweepSpec& spec) {
+  const Measure x = spec.error.value_or(default_error(scene));
+  const auto measures = measures_of(scene);
+  const std::string unit(measure_unit(x)), words(measure_words(x));
   struct Row {
     std::string solver, backend, setting, failure;
-    double error = INFINITY, rms = INFINITY, time = 0;
+    StateErrors final, rms;  // NaN: not measured (a failed cell, or a body measure of a scene without bodies)
+    double error = INFINITY, time = 0;  // the diagram's measure at the end
     Spread secs;
     std::uint64_t steps = 0, evals = 0;
   };
   std::vector<Row> rows;
   double nothing = INFINITY;
   for (const auto& u : units) {
-    nothing = u.value("error_of_nothing", INFINITY);
+    const auto& n = u.at("error_of_nothing");
+    nothing = n.contains(measure_name(x)) ? n.at(std::string(measure_name(x))).get<double>() : INFINITY;
     for (const auto& c : u.at("cells")) {
       Row r;
       r.solver = u.at("solver");
       r.backend = c.at("backend");
       r.setting = u.at("setting");
       r.failure = c.value("failure", "");
-      if (!c.at("error_final").is_null()) r.error = c.at("error_final").get<double>();
-      if (!c.at("error_rms").is_null()) r.rms = c.at("error_rms").get<double>();
+      for (const Measure m : kMeasures) {
+        r.final[m] = r.rms[m] = NAN;
+        const auto it = c.at("errors").find(measure_name(m));
+        if (it == c.at("errors").end()) continue;
+        r.final[m] = it->at("final").is_null() ? INFINITY : it->at("final").get<double>();
+        r.rms[m] = it->at("rms").is_null() ? INFINITY : it->at("rms").get<double>();
+      }
+      if (std::isfinite(r.final[x])) r.error = r.final[x];
       r.secs = spread(c.at("seconds").get<std::vector<double>>());
       r.time = r.secs.median;
       r.steps = c.at("steps");
@@ -227,33 +267,63 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
     return true;
   };
 
+  auto why = [&] {
+    if (spec.error) return std::string("chosen with --error");
+    if (x == Measure::orientation)
+      return std::string("the default for a scene of bodies: rotation is where the backends' algebras differ, while a "
+                         "centre of mass moves by the same formulas in both; --error position|velocity|angular_velocity "
+                         "draws another");
+    return std::string("the default for a scene with particles; --error chooses another");
+  };
   std::ostringstream md, csv;
   md << "# " << scene.name << ": what accuracy costs in time\n\nReference: traditional, cash_karp45 at 1e-13. "
-     << spec.repeats << " timed repeats per cell after one warm-up, backends interleaved; the Pareto front marked ★.\n\n"
-     << "| method | backend | setting | error at end (m) | RMS error (m) | time median (min–max) | steps | f evals | |\n"
-     << "|---|---|---|---:|---:|---:|---:|---:|---|\n";
-  csv << "method,backend,setting,error_final_m,error_rms_m,seconds_median,seconds_min,seconds_max,steps,evaluations,failure\n";
+     << spec.repeats << " timed repeats per cell after one warm-up, backends interleaved. Errors against the reference "
+     << "at the final time, the largest over particles and bodies: position |x − x_ref| (m), orientation (rad: the "
+     << "angle of q_ref⁻¹ q, accurate to rounding), velocity |v − v_ref| (m/s) and angular velocity |ω − ω_ref| "
+     << "(rad/s, world frame); the RMS is over every sample and moving object. **The diagram's x-axis and the Pareto front (★): "
+     << words << " error at the end (" << unit << ")**, " << why() << ".\n\n"
+     << "| method | backend | setting |";
+  for (const Measure m : measures) md << " " << measure_words(m) << " (" << measure_unit(m) << ") |";
+  md << " RMS " << words << " (" << unit << ") | time median (min–max) | steps | f evals | |\n|---|---|---|";
+  for (std::size_t k = 0; k < measures.size(); ++k) md << "---:|";
+  md << "---:|---:|---:|---:|---|\n";
+  csv << "method,backend,setting";
+  for (const Measure m : kMeasures) csv << "," << measure_name(m) << "_error";
+  for (const Measure m : kMeasures) csv << "," << measure_name(m) << "_error_rms";
+  csv << ",seconds_median,seconds_min,seconds_max,steps,evaluations,failure\n";
+  // In the CSV a measure not measured (the scene has no object for it, or the
+  // setting was refused) is an empty field; a run that stopped early reads inf.
+  auto csv_number = [](double v) { return std::isnan(v) ? std::string() : fmt("%.9g", v); };
   for (const auto& r : rows) {
+    md << "| " << r.solver << " | " << r.backend << " | " << r.setting << " |";
     if (!r.failure.empty()) {
-      md << "| " << r.solver << " | " << r.backend << " | " << r.setting << " | failed: " << r.failure << " | | | | | |\n";
+      md << " failed: " << r.failure << " |";
+      for (std::size_t k = 0; k < measures.size() + 4; ++k) md << " |";
+      md << "\n";
     } else {
-      md << "| " << r.solver << " | " << r.backend << " | " << r.setting << " | " << fmt("%.2e", r.error) << " | "
-         << fmt("%.2e", r.rms) << " | " << fmt("%.3g", 1e3 * r.time) << " ms (" << fmt("%.3g", 1e3 * r.secs.min) << "–"
-         << fmt("%.3g", 1e3 * r.secs.max) << ") | " << (r.steps ? std::to_string(r.steps) : "–") << " | " << r.evals
-         << " | " << (pareto(r) ? "★" : "") << " |\n";
+      for (const Measure m : measures) md << " " << fmt("%.2e", r.final[m]) << " |";
+      md << " " << fmt("%.2e", r.rms[x]) << " | " << fmt("%.3g", 1e3 * r.time) << " ms (" << fmt("%.3g", 1e3 * r.secs.min)
+         << "–" << fmt("%.3g", 1e3 * r.secs.max) << ") | " << (r.steps ? std::to_string(r.steps) : "–") << " | "
+         << r.evals << " | " << (pareto(r) ? "★" : "") << " |\n";
     }
     std::string failure = r.failure;
     std::replace(failure.begin(), failure.end(), ',', ';');
-    csv << r.solver << "," << r.backend << "," << r.setting << "," << fmt("%.9g", r.error) << "," << fmt("%.9g", r.rms)
-        << "," << fmt("%.9g", r.time) << "," << fmt("%.9g", r.secs.min) << "," << fmt("%.9g", r.secs.max) << ","
+    csv << r.solver << "," << r.backend << "," << r.setting;
+    for (const Measure m : kMeasures) csv << "," << csv_number(r.final[m]);
+    for (const Measure m : kMeasures) csv << "," << csv_number(r.rms[m]);
+    csv << "," << fmt("%.9g", r.time) << "," << fmt("%.9g", r.secs.min) << "," << fmt("%.9g", r.secs.max) << ","
         << r.steps << "," << r.evals << "," << failure << "\n";
   }
+  if (std::none_of(rows.begin(), rows.end(), usable))
+    md << "\nNo cell has a " << words << " error above 0 and below the error of not simulating at all ("
+       << fmt("%.2e", nothing) << " " << unit << "): there is no diagram to draw.\n";
   write_file_atomically(dir / "sweep.md", md.str());
   write_file_atomically(dir / "sweep.csv", csv.str());
 
   // The diagram in the field's convention (SciML's benchmarks): x the error, y the
   // time, both logarithmic, a line with markers per solver and backend.
-  Plot p{scene.name + ": what accuracy costs in time", "error at the end (m)", "time (s), median", true, true, {}, {}};
+  Plot p{scene.name + ": what accuracy costs in time", words + " error at the end (" + unit + ")", "time (s), median",
+         true, true, {}, {}};
   std::vector<std::pair<double, double>> front;
   for (const auto& r : rows) {
     const std::string title = r.solver + " (" + r.backend + ")";
@@ -272,6 +342,8 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
     p.series.push_back(f);
   }
   std::string figure;
+  std::error_code gone;
+  std::filesystem::remove(dir / (scene.name + "_work_precision.svg"), gone);  // a stale one, drawn by another --error
   if (!p.series.empty()) {
     figure = render_svg(p);
     write_file_atomically(dir / (scene.name + "_work_precision.svg"), figure);

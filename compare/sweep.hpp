@@ -13,17 +13,25 @@
 //
 // Reference: the traditional backend with cash_karp45 at abs = rel = 1e-13 (the
 // tightest tolerance at which these scenes still run in seconds); errors of cells
-// tighter than ~1e-11 measure the reference as much as the cell. Error: the
-// largest particle or body position difference at the final time, and the RMS
-// over all samples (50 a run: adaptive steps never cross a sample time, so a fine
-// sampling would cap every tolerance at the same step). Time: one warm-up, then
-// the median (min–max) of the repeats, each a whole simulation.
+// tighter than ~1e-11 measure the reference as much as the cell. Errors
+// (compare/metrics.hpp), each the largest over particles and bodies at the final
+// time and the RMS over all samples (50 a run: adaptive steps never cross a
+// sample time, so a fine sampling would cap every tolerance at the same step):
+// position (m), orientation (rad, bodies), velocity (m/s), angular velocity
+// (rad/s, bodies). The work-precision diagram and the Pareto front use one of
+// them at the final time: --error, by default orientation for a scene of bodies
+// (rotation is where the algebras differ; a centre of mass moves by the same
+// formulas in both, and on a spinning body it does not move at all) and
+// position for a scene with particles. Time: one warm-up, then the median
+// (min–max) of the repeats, each a whole simulation.
+#include "compare/metrics.hpp"
 #include "core/run.hpp"
 #include "core/scene.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,7 +45,16 @@ struct SweepSpec {
   int repeats = 3;
   double max_duration = 0;        // > 0: cut the scene to this duration
   bool peer = true;               // Boost.Odeint's Cash–Karp, where the scene has no projection
+  std::optional<Measure> error;   // the diagram's x-axis; nullopt: default_error(scene)
 };
+
+// Orientation for a scene with bodies and no particles, position otherwise.
+Measure default_error(const core::Scene& scene);
+
+// A unit's record is reused by a resumed sweep or a merge only when it was
+// written by this format (older ones measured position alone) for this scene.
+inline constexpr int kSweepCellFormat = 2;
+bool cell_is_current(const nlohmann::json& record, const std::string& scene_sha256);
 
 struct Unit {
   std::string id;       // file name stem: solver-setting
@@ -56,7 +73,9 @@ core::Scene swept_scene(const core::Scene& scene, const SweepSpec& spec);
 core::Run sweep_reference(const core::Scene& swept);
 
 // Runs one unit (both backends, or the peer) against the reference and returns
-// its record: {"unit", "solver", "setting", "scene_sha256", "cells": [...]}.
+// its record: {"format", "unit", "solver", "setting", "scene_sha256", "error_of_nothing": {measure: value},
+// "cells": [{"backend", "errors": {measure: {"final", "rms"}}, "seconds", "steps", ...}]}
+// (an error is null where the run failed; a measure the scene has no object for is absent).
 nlohmann::ordered_json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& reference,
                                 const SweepSpec& spec);
 

@@ -26,6 +26,7 @@ OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> vel
 
 double OdeSolver::error_ratio(const std::vector<double>& y, const std::vector<double>& ynew,
                               const std::vector<double>& err) const {
+  if (norm_ && spec_.error_norm == ErrorNorm::physical) return norm_(y, ynew, err);
   double worst = 0;
   for (std::size_t i = 0; i < y.size(); ++i) {
     const double scale = spec_.abs_tol + spec_.rel_tol * std::max(std::abs(y[i]), std::abs(ynew[i]));

@@ -10,7 +10,8 @@
 //   cash_karp45   §B.3.2, eq. 57–58, Table 4: the 5th-order solution is kept
 //                 (local extrapolation) and the embedded 4th-order one gives the error
 //
-// Step control (§B.3.3, eq. 59, done properly): the error of component i is
+// Step control (§B.3.3, eq. 59, done properly): by default the caller's physical
+// error norm (set_error_norm; core/scene.hpp ErrorNorm), else the error of component i is
 // scaled by abs_tol + rel_tol·max(|y_i|, |y_new_i|); the worst ratio E sets the
 // step, h_new = h · clamp(0.9 · E^(−1/(order+1)), 0.2, 5). The report's eq. 59 has
 // no safety factor or limits, which lets one lucky step grow h without bound.
@@ -31,6 +32,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <span>
 #include <sstream>
@@ -68,6 +70,13 @@ class OdeSolver {
 
   const SolverStats& stats() const { return stats_; }
 
+  // The error ratio of a step (≤ 1: accept) when the spec asks for the
+  // physical norm: norm(y, y_new, err) with the tolerances applied by the
+  // caller, which knows what the numbers are (core/simulation.hpp). Without it,
+  // or with error_norm "component", every component against its tolerance.
+  using ErrorNormFn = std::function<double(std::span<const double>, std::span<const double>, std::span<const double>)>;
+  void set_error_norm(ErrorNormFn norm) { norm_ = std::move(norm); }
+
  private:
   template <class F> void eval(F& f, double t, std::span<const double> y, std::vector<double>& dy);
   template <class F> void rk4_step(F& f, double t, double h, const std::vector<double>& y, std::vector<double>& out);
@@ -78,6 +87,7 @@ class OdeSolver {
   void record(double h);
 
   SolverSpec spec_;
+  ErrorNormFn norm_;
   double h_;  // adaptive: the step to try next
   SolverStats stats_;
   std::vector<int> velocity_of_;

@@ -12,9 +12,11 @@ namespace gacompare::core {
 BodyEffects body_effects(const Scene& scene) {
   BodyEffects fx;
   for (const auto& e : scene.effects) {
-    if (auto* g = std::get_if<Gravity>(&e)) fx.gravity = g->g;
-    if (auto* d = std::get_if<LinearDrag>(&e)) fx.linear_k = d->k, fx.linear_k_angular = d->k_angular;
-    if (auto* d = std::get_if<QuadraticDrag>(&e)) fx.quadratic_k = d->k, fx.quadratic_k_angular = d->k_angular;
+    if (auto* g = std::get_if<Gravity>(&e)) fx.has_gravity = true, fx.gravity = g->g;
+    if (auto* d = std::get_if<LinearDrag>(&e))
+      fx.has_linear_drag = true, fx.linear_k = d->k, fx.linear_k_angular = d->k_angular;
+    if (auto* d = std::get_if<QuadraticDrag>(&e))
+      fx.has_quadratic_drag = true, fx.quadratic_k = d->k, fx.quadratic_k_angular = d->k_angular;
     if (auto* a = std::get_if<AppliedForces>(&e))
       for (const auto& f : a->forces) {
         const auto it = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const Body& b) { return b.name == f.body; });

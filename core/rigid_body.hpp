@@ -18,7 +18,10 @@ struct BodyProperties {
 
 // The effects a scene lists, as they act on bodies (read once; every backend
 // applies them in its own algebra): gravity, drag on v and ω, forces at points.
+// Only the listed ones are evaluated (docs/architecture.md: an effect not listed
+// costs nothing): the flags say which are.
 struct BodyEffects {
+  bool has_gravity = false, has_linear_drag = false, has_quadratic_drag = false;
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
   double linear_k = 0, linear_k_angular = 0, quadratic_k = 0, quadratic_k_angular = 0;
   struct Push {

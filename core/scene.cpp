@@ -389,9 +389,15 @@ class Loader {
 
  private:
   SolverSpec solver(const Val& v) {
-    static constexpr Keys<4> keys = {"method", "dt", "abs_tol", "rel_tol"};
+    static constexpr Keys<5> keys = {"method", "dt", "abs_tol", "rel_tol", "error_norm"};
     Obj o(v, keys);
     SolverSpec spec;
+    if (auto x = o.opt("error_norm")) {
+      const std::string m = str(*x);
+      if (m == "physical") spec.error_norm = ErrorNorm::physical;
+      else if (m == "component") spec.error_norm = ErrorNorm::component;
+      else x->expected("\"physical\" or \"component\"");
+    }
     spec.method = *solver_method_from_string(one_of(o.req("method"), kMethods));
     if (auto x = o.opt("dt")) spec.dt = number(*x, Range::positive);
     if (auto x = o.opt("abs_tol")) spec.abs_tol = number(*x, Range::positive);

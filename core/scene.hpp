@@ -1,7 +1,7 @@
 #pragma once
 // The scene model: a read-only description of what to simulate, loaded once
 // from data/scenes/*.json. Keys and units are the public contract of
-// ../shared/DESIGN.md and issue #2; every backend builds its own state from it.
+// docs/architecture.md and issue #2; every backend builds its own state from it.
 #include <Eigen/Core>
 
 #include <filesystem>
@@ -19,11 +19,21 @@ enum class SolverMethod { euler, rk4, rk4_doubling, cash_karp45, symplectic_eule
 std::string_view to_string(SolverMethod m);
 std::optional<SolverMethod> solver_method_from_string(std::string_view s);
 
+// How an adaptive step's error is measured against the tolerances (issue #13):
+//   physical (default): per body, the errors of the position, the velocity, the
+//     rotation (the angle of R⁻¹ δR, whatever stores R) and the angular velocity,
+//     each against abs_tol + rel_tol·|its value|; particles per component.
+//     Equal tolerance then asks the same accuracy of a matrix, a quaternion and
+//     a rotor.
+//   component: every stored number against abs_tol + rel_tol·|it| (the report's
+//     §B.3.3): 9 matrix entries, 4 quaternion or rotor components, momenta.
+enum class ErrorNorm { physical, component };
 struct SolverSpec {
   SolverMethod method = SolverMethod::rk4;
   double dt = 1e-3;       // s: the step of fixed-step methods, the first try of adaptive ones
-  double abs_tol = 1e-9;  // adaptive methods: per-component absolute tolerance
-  double rel_tol = 1e-9;  // adaptive methods: per-component relative tolerance
+  double abs_tol = 1e-9;  // adaptive methods: absolute tolerance
+  double rel_tol = 1e-9;  // adaptive methods: relative tolerance
+  ErrorNorm error_norm = ErrorNorm::physical;
 };
 
 // --- effects (Table 2 of the report, plus collisions) ---------------------------

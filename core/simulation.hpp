@@ -10,6 +10,8 @@
 #include "core/particle_system.hpp"
 #include "core/rigid_body.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 
 namespace gacompare::core {
@@ -25,10 +27,19 @@ struct Simulation {
     std::size_t offset = 0;  // where the bodies' state starts
     std::optional<Contacts> collisions;  // only when the scene lists the effect
     double bounding_seconds = 0;         // building the bounding spheres, once
+    double mass_seconds = 0;             // the bodies' exact mass properties, once
   };
 
   static Model build(const Scene& scene) {
-    Model m{Particles::build(scene), {}, body_properties(scene), 0, std::nullopt, 0};
+    Model m{Particles::build(scene), {}, {}, 0, std::nullopt, 0, 0};
+    if (!scene.bodies.empty()) {
+      Profile once;
+      {
+        ScopedStage timed(once, Stage::mass_properties);
+        m.props = body_properties(scene);
+      }
+      m.mass_seconds = once[Stage::mass_properties].seconds;
+    }
     m.bodies = Bodies::build(scene, m.props);
     m.offset = Particles::state_size(m.particles);
     if (scene.find_effect<Collisions>()) {
@@ -121,6 +132,22 @@ struct Simulation {
       if (!d.hits.empty()) c.respond(m.bodies, bodies(y), d, t - t0, profile);
     }
   }
+  // The physical error norm of an adaptive step (core/scene.hpp ErrorNorm):
+  // particles per component (their numbers are positions and velocities
+  // already), each body by its backend.
+  static double error_ratio(const Model& m, const SolverSpec& spec, std::span<const double> y,
+                            std::span<const double> ynew, std::span<const double> err) {
+    double worst = 0;
+    for (std::size_t i = 0; i < m.offset; ++i) {
+      const double r = std::abs(err[i]) / (spec.abs_tol + spec.rel_tol * std::max(std::abs(y[i]), std::abs(ynew[i])));
+      if (std::isnan(r)) return r;
+      worst = std::max(worst, r);
+    }
+    if (m.bodies.bodies.empty()) return worst;
+    const double r = Bodies::error_ratio(m.bodies, y.subspan(m.offset), ynew.subspan(m.offset), err.subspan(m.offset),
+                                         spec.abs_tol, spec.rel_tol);
+    return std::isnan(r) ? r : std::max(worst, r);
+  }
   static std::size_t state_size(const Model& m) { return m.offset + Bodies::state_size(m.bodies); }
   static void initial_state(const Model& m, std::span<double> y) {
     Particles::initial_state(m.particles, y.first(m.offset));
@@ -162,6 +189,7 @@ struct Simulation {
   static std::map<std::string, double> metrics(const Model& m) {
     auto out = Particles::metrics(m.particles);
     if (m.collisions) out["bounding_volumes_seconds"] = m.bounding_seconds;
+    if (!m.bodies.bodies.empty()) out["mass_properties_seconds"] = m.mass_seconds;
     return out;
   }
 };

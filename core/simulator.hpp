@@ -1,5 +1,5 @@
 #pragma once
-// The simulator loop, a template over a backend (DESIGN.md "Data flow"): no
+// The simulator loop, a template over a backend (docs/architecture.md "Data flow"): no
 // virtual call sits inside a per-particle or per-vertex loop, so timings compare
 // the mathematics, not the dispatch. Each backend packs its own state into a flat
 // vector of doubles; the loop integrates it, samples it at the output times and
@@ -39,6 +39,8 @@ concept Backend = requires(const Scene& scene, const typename B::Model& m, doubl
   { B::observe(m, y, sample) };
   // "" when every component is finite, else what holds the bad value: "particle 'bob'".
   { B::first_nonfinite(m, y) } -> std::same_as<std::string>;
+  // The physical error norm of an adaptive step (core/scene.hpp ErrorNorm).
+  { B::error_ratio(m, scene.solver, y, y, y) } -> std::same_as<double>;
   // B::advance(model, solver, f, t, t_end, y, profile, after): integrates to
   // t_end (with collision handling when the model has it; core/simulation.hpp).
 };
@@ -69,6 +71,9 @@ Run simulate(const Scene& scene) {
   std::vector<double> y(B::state_size(model));
   B::initial_state(model, y);
   OdeSolver solver(scene.solver, y.size(), B::velocity_of(model));
+  solver.set_error_norm([&](std::span<const double> y0, std::span<const double> y1, std::span<const double> err) {
+    return B::error_ratio(model, scene.solver, y0, y1, err);
+  });
   auto after = [&](std::vector<double>& yy) { return B::after_step(model, yy, run.profile); };
   auto f = [&](double t, std::span<const double> yy, std::span<double> dy) {
     B::derivative(model, t, yy, dy, run.profile);

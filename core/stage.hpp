@@ -1,5 +1,5 @@
 #pragma once
-// Stage timing (DESIGN.md "Stage names"): one Stage enum, one Profile per run,
+// Stage timing (docs/architecture.md "Stage names"): one Stage enum, one Profile per run,
 // filled by a scoped timer so timing never clutters the mathematics. Times are
 // exclusive: entering a nested stage pauses the enclosing one, so the stage
 // times of a run add up to the time spent inside stages.

@@ -43,8 +43,14 @@ Layout layout(const RigidBodies::Model& m, std::size_t b) {
   const std::size_t base = b * m.stride, rot = m.rotation == core::Rotation::matrix ? 9 : 4;
   return {base, base + 3, base + 3 + rot, base + 6 + rot};
 }
+// The rotation the state stands for. A quaternion is normalised first, as the
+// cga backend normalises its rotor (one policy, issue #13): Eigen's
+// toRotationMatrix assumes a unit quaternion, so a drifted one gave a matrix
+// that is not a rotation, and ω = R I⁻¹ Rᵀ L a rate off by the drift. The
+// matrix state is used as it is: making it a rotation takes a polar
+// decomposition, and its drift is what renormalise is for.
 Mat rotation(const RigidBodies::Model& m, std::span<const double> y, const Layout& at) {
-  return m.rotation == core::Rotation::matrix ? matrix_at(y, at.rot) : quat_at(y, at.rot).toRotationMatrix();
+  return m.rotation == core::Rotation::matrix ? matrix_at(y, at.rot) : quat_at(y, at.rot).normalized().toRotationMatrix();
 }
 }  // namespace
 
@@ -93,9 +99,12 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     const Vec v = body.inv_mass * P;
     const Mat r = rotation(m, y, at);
     const Vec w = r * (body.inv_inertia * (r.transpose() * L));  // ω = R I⁻¹ Rᵀ L
-    Vec force = body.mass * m.effects.gravity - m.effects.linear_k * v - m.effects.quadratic_k * v.norm() * v;
-    Vec torque = -m.effects.linear_k_angular * w - m.effects.quadratic_k_angular * w.norm() * w;
-    for (const auto& push : m.effects.pushes)
+    const core::BodyEffects& fx = m.effects;
+    Vec force = Vec::Zero(), torque = Vec::Zero();
+    if (fx.has_gravity) force += body.mass * fx.gravity;
+    if (fx.has_linear_drag) force -= fx.linear_k * v, torque -= fx.linear_k_angular * w;
+    if (fx.has_quadratic_drag) force -= fx.quadratic_k * v.norm() * v, torque -= fx.quadratic_k_angular * w.norm() * w;
+    for (const auto& push : fx.pushes)
       if (push.body == b && t >= push.from && t < push.until) {
         force += push.force;
         torque += (r * push.point).cross(push.force);  // τ = (R p) × F
@@ -145,6 +154,38 @@ double RigidBodies::rotation_drift(const Model& m, std::span<const double> y) {
                          ? (matrix_at(y, at.rot).transpose() * matrix_at(y, at.rot) - Mat::Identity()).norm()
                          : std::abs(quat_at(y, at.rot).squaredNorm() - 1.0);
     worst = std::max(worst, d);
+  }
+  return worst;
+}
+
+// The angle of R⁻¹ δR: for a matrix the axial vector of the antisymmetric part
+// of Rᵀ δR (its symmetric part is stretch, the drift renormalise is for); for
+// a quaternion 2 vec(q* δq)/|q|². |δω| in the body frame, I⁻¹ Rᵀ δL (a rotation
+// keeps lengths), with R normalised as everywhere else.
+double RigidBodies::error_ratio(const Model& m, std::span<const double> y, std::span<const double> ynew,
+                                std::span<const double> err, double abs, double rel) {
+  double worst = 0;
+  const auto worse = [&](double r) { worst = std::isnan(r) || std::isnan(worst) ? NAN : std::max(worst, r); };
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Body& body = m.bodies[b];
+    if (body.inv_mass == 0) continue;
+    const Layout at = layout(m, b);
+    const auto ratio = [&](double e, double a, double c) { return e / (abs + rel * std::max(a, c)); };
+    worse(ratio(vec_at(err, at.x).norm(), vec_at(y, at.x).norm(), vec_at(ynew, at.x).norm()));
+    worse(ratio(vec_at(err, at.p).norm(), vec_at(y, at.p).norm(), vec_at(ynew, at.p).norm()));  // δP/m over |P|/m
+    double angle;
+    if (m.rotation == core::Rotation::matrix) {
+      const Mat a = matrix_at(ynew, at.rot).transpose() * matrix_at(err, at.rot);
+      angle = 0.5 * Vec(a(2, 1) - a(1, 2), a(0, 2) - a(2, 0), a(1, 0) - a(0, 1)).norm();
+    } else {
+      const Eigen::Quaterniond q = quat_at(ynew, at.rot);
+      angle = 2 * (q.conjugate() * quat_at(err, at.rot)).vec().norm() / q.squaredNorm();
+    }
+    worse(angle / (abs + rel));
+    const Mat r0 = rotation(m, y, at), r1 = rotation(m, ynew, at);
+    const Vec w0 = body.inv_inertia * (r0.transpose() * vec_at(y, at.l));
+    const Vec w1 = body.inv_inertia * (r1.transpose() * vec_at(ynew, at.l));
+    worse(ratio((body.inv_inertia * (r1.transpose() * vec_at(err, at.l))).norm(), w0.norm(), w1.norm()));
   }
   return worst;
 }

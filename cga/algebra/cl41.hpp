@@ -81,7 +81,7 @@ using Rotor5 = Multivector<Cl41, Rotor3::blades>;
 // The 5×5 matrix of X ↦ V X Ṽ on vectors (the versor's outermorphism), column i
 // the image of basis vector i. Built once per body, it moves each conformal point
 // for 25 multiply-adds instead of a full sandwich: the form the Gaigen ray tracer
-// used (DESIGN.md "Fair comparison").
+// used (docs/architecture.md "Fair comparison").
 template <BladeSet S>
 Eigen::Matrix<double, 5, 5> outermorphism(const Multivector<Cl41, S>& v) {
   Eigen::Matrix<double, 5, 5> m;

@@ -6,7 +6,7 @@
 //
 // Cl(3,0): e1 e2 e3, all squaring to +1.
 // Cl(4,1): e1 e2 e3 e (+1) ē (−1), bits 0..4, so a Cl(3,0) blade has the same
-// bitmask in Cl(4,1) and embedding is a copy (DESIGN.md "Conventions").
+// bitmask in Cl(4,1) and embedding is a copy (docs/architecture.md "Conventions").
 #include <bit>
 #include <cstdint>
 #include <initializer_list>

@@ -57,7 +57,7 @@ inline Vec3 nearest_on_line_by_reflection(const Vec3& x, const Line& l) {
   return 0.5 * (x + reflect_in_line_by_sandwich(x, l));
 }
 
-// The nearest point as a meet (the default: DESIGN.md "best form of the same
+// The nearest point as a meet (the default: docs/architecture.md "best form of the same
 // class of algorithm"): the line meets the plane through x normal to it,
 // π = u + (u·x) n (u the direction, L's e_i e ē part), in the flat point π⌋L
 // (§2.4.4). One vector–trivector contraction instead of the two trivector

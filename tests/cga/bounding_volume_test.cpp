@@ -57,7 +57,7 @@ TEST(CgaBoundingVolume, ThreePointSphereIsTheCircumcircles) {
 // cross: |ρ1 − ρ2| ≤ d ≤ ρ1 + ρ2. Nested spheres have C² < 0 like separate ones,
 // and SphereOps::overlap still calls them overlapping. Outside a band of 1e-9
 // (relative) around both tangencies, where the sign is rounding's; size-1 data.
-// overlap_by_inner_products gives the same answers.
+// SphereOps::overlap (by inner products) and overlap_by_meet say d ≤ ρ1 + ρ2.
 TEST(CgaBoundingVolume, TheReportsMeetRuleSeesCrossingSurfacesOnly) {
   std::mt19937_64 g(14);
   std::uniform_real_distribution<double> u(-2, 2), rad(0.05, 1.5);
@@ -75,7 +75,7 @@ TEST(CgaBoundingVolume, TheReportsMeetRuleSeesCrossingSurfacesOnly) {
     const bool cross = std::abs(r1 - r2) <= d && d <= r1 + r2;
     EXPECT_EQ(c2_direct >= 0, cross) << i;
     EXPECT_EQ(SphereOps::overlap(s1, s2), d <= r1 + r2) << i;
-    EXPECT_EQ(cga::overlap_by_inner_products(s1, s2), d <= r1 + r2) << i;
+    EXPECT_EQ(cga::overlap_by_meet(s1, s2), d <= r1 + r2) << i;
     crossing += cross;
     nested += d < std::abs(r1 - r2);
   }

@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
+#include <vector>
 
 namespace {
 namespace fs = std::filesystem;
@@ -175,7 +177,8 @@ TEST(Cli, CheckPassesOnAFreshBaselineAndFailsOnADoctoredOne) {
 
   // Move one particle's stored final position by 1 µm: beyond the 1e-9 m tolerance.
   json j = read_json(file);
-  j["runs"][1]["final"]["particles"]["shot"][0] = j["runs"][1]["final"]["particles"]["shot"][0].get<double>() + 1e-6;
+  auto& shot = j["runs"][1]["final"]["particles"]["shot"];
+  shot["position"][0] = shot["position"][0].get<double>() + 1e-6;
   write_text(file, j.dump());
   const Result doctored = gacompare("check " + kScene + " --baseline " + dir.string() + " --quiet");
   EXPECT_EQ(doctored.code, 1) << doctored.out;
@@ -203,16 +206,26 @@ TEST(Cli, CheckWithoutOrWithABrokenBaselineExitsTwo) {
   EXPECT_NE(broken.err.find("projectile_linear_drag.json: cannot parse this baseline"), std::string::npos) << broken.err;
 }
 
-// The error columns (method, backend, setting, error at end, RMS) of a sweep.md:
-// deterministic, unlike the times.
+// The error columns of a sweep.md's table rows (all but the last four: time,
+// steps, f evals, Pareto mark): deterministic, unlike the times.
 std::string error_columns(const fs::path& md) {
   std::istringstream in(read_text(md));
   std::string line, out;
   while (std::getline(in, line)) {
     if (line.rfind("| ", 0) != 0) continue;
-    std::size_t bar = 0;
-    for (int k = 0; k < 5 && bar != std::string::npos; ++k) bar = line.find('|', bar + 1);
+    std::size_t bar = line.size();
+    for (int k = 0; k < 5 && bar != std::string::npos; ++k) bar = line.rfind('|', bar - 1);
     out += line.substr(0, bar) + "\n";
+  }
+  return out;
+}
+
+// One line of a CSV split at its commas.
+std::vector<std::string> fields(const std::string& line) {
+  std::vector<std::string> out(1);
+  for (char c : line) {
+    if (c == ',') out.emplace_back();
+    else out.back().push_back(c);
   }
   return out;
 }
@@ -248,6 +261,55 @@ TEST(Cli, ShardedSweepMergesIntoTheUnshardedOneAndResumes) {
 
   const Result partial = gacompare(std::string("merge ") + fresh_dir("sweep_shard0").string() + " --out " + fresh_dir("x").string());
   EXPECT_EQ(partial.code, 2);  // sweep_shard0 was just emptied: not a sweep folder
+}
+
+// A sweep of a rigid scene measures the four errors; its diagram is drawn on the
+// orientation error by default (the centre of a spinning body never moves, and
+// a position-only sweep read 0 in every cell) and on what --error names.
+TEST(Cli, SweepOfABodyMeasuresEveryErrorAndDrawsOrientation) {
+  const std::string sweep = "sweep " + std::string(GACOMPARE_DATA_DIR) +
+                            "/scenes/dzhanibekov.json --solvers rk4 --steps 1e-2:1 --no-peer --max-duration 2 "
+                            "--repeats 1 --quiet --out ";
+  const fs::path dir = fresh_dir("sweep_body");
+  ASSERT_EQ(gacompare(sweep + dir.string()).code, 0);
+  std::istringstream csv(read_text(dir / "sweep.csv"));
+  std::string header, row;
+  std::getline(csv, header);
+  const auto names = fields(header);
+  for (const char* c : {"position_error", "orientation_error", "velocity_error", "angular_velocity_error"})
+    EXPECT_NE(std::find(names.begin(), names.end(), c), names.end()) << c << " in " << header;
+  int rows = 0;
+  while (std::getline(csv, row)) {
+    const auto f = fields(row);
+    ASSERT_EQ(f.size(), names.size()) << row;
+    auto at = [&](const char* c) { return std::stod(f[std::find(names.begin(), names.end(), c) - names.begin()]); };
+    EXPECT_EQ(at("position_error"), 0.0);  // the racket spins about its fixed centre
+    EXPECT_GT(at("orientation_error"), 0.0) << row;
+    EXPECT_GT(at("angular_velocity_error"), 0.0) << row;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 4);  // rk4 at two steps, two backends
+  const std::string md = read_text(dir / "sweep.md");
+  EXPECT_NE(md.find("orientation error at the end (rad)**, the default"), std::string::npos) << md;
+  EXPECT_TRUE(fs::exists(dir / "dzhanibekov_work_precision.svg"));
+
+  // The same cells (nothing reruns), drawn on the velocity error: 0 everywhere, so no diagram.
+  const Result v = gacompare(sweep + dir.string() + " --error velocity");
+  EXPECT_NE(v.err.find("ran 0 unit(s)"), std::string::npos) << v.err;
+  EXPECT_NE(read_text(dir / "sweep.md").find("velocity error at the end (m/s)**, chosen with --error"), std::string::npos);
+  EXPECT_NE(read_text(dir / "sweep.md").find("there is no diagram"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "dzhanibekov_work_precision.svg"));
+
+  // A cell written by the position-only format is run again, not read as done.
+  for (const auto& e : fs::directory_iterator(dir / "cells")) {
+    json cell = read_json(e.path());
+    cell.erase("format");
+    write_text(e.path(), cell.dump());
+    break;
+  }
+  EXPECT_NE(gacompare(sweep + dir.string()).err.find("ran 1 unit(s), skipped 1"), std::string::npos);
+
+  EXPECT_EQ(gacompare("sweep " + kScene + " --error orientation --out " + fresh_dir("bad_error").string()).code, 2);
 }
 
 TEST(Cli, SweepRejectsBadSpecs) {

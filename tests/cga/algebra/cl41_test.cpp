@@ -1,4 +1,4 @@
-// The conformal model's conventions (DESIGN.md) and versors (§1.3, §1.4),
+// The conformal model's conventions (docs/architecture.md) and versors (§1.3, §1.4),
 // each against its closed-form Euclidean meaning. Tolerances: 1e-13 on O(1)
 // coordinates (a handful of roundings through x² terms).
 #include "cga/algebra/cl41.hpp"
