@@ -1,6 +1,6 @@
 #include "compare/summary.hpp"
 
-#include "compare/results.hpp"
+#include "compare/metrics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -96,10 +96,30 @@ const char* to_string(Trajectories t) {
   return "?";
 }
 
-Trajectories classify(double position_divergence, double orientation_divergence, const Tolerance& tol) {
+Trajectories classify(double position_divergence, double orientation_divergence, double tolerance_used) {
   if (position_divergence == 0 && orientation_divergence == 0) return Trajectories::identical;
-  // NaN (a blown-up run) is not agreement.
-  return position_divergence <= tol.metres ? Trajectories::agree : Trajectories::parted;
+  return tolerance_used <= 1 ? Trajectories::agree : Trajectories::parted;  // a NaN is not agreement
+}
+
+double tolerance_used(const SceneResult& r, double d) {
+  const BackendResult* trad = find_backend(r, "traditional");
+  const BackendResult* cga = find_backend(r, "cga");
+  if (!trad || !cga) return 0;
+  const std::vector<double> radii = body_radii(r.scene);
+  const auto& a = trad->run.samples;
+  const auto& b = cga->run.samples;
+  double used = 0;
+  for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
+    for (std::size_t i = 0; i < std::min(a[k].particles.size(), b[k].particles.size()); ++i)
+      used = worse(used, particle_difference(a[k].particles[i], b[k].particles[i])[Measure::position] / d);
+    for (std::size_t i = 0; i < std::min(a[k].bodies.size(), b[k].bodies.size()); ++i) {
+      if (i < r.scene.bodies.size() && r.scene.bodies[i].is_static) continue;
+      const StateErrors e = body_difference(a[k].bodies[i], b[k].bodies[i]);
+      const double radius = i < radii.size() ? radii[i] : 0;
+      used = worse(used, std::max(e[Measure::position], radius * e[Measure::orientation]) / d);
+    }
+  }
+  return used;
 }
 
 SceneSummary summarise_scene(const SceneResult& r) {
@@ -118,7 +138,8 @@ SceneSummary summarise_scene(const SceneResult& r) {
   s.orientation_divergence = max_orientation_divergence(r);
   for (const auto* b : {trad, cga})
     if (b->run.error) s.not_compared_why = b->run.backend + " stopped early";
-  s.trajectories = s.not_compared_why.empty() ? classify(s.divergence, s.orientation_divergence, s.tolerance)
+  s.tolerance_used = tolerance_used(r, s.tolerance.metres);
+  s.trajectories = s.not_compared_why.empty() ? classify(s.divergence, s.orientation_divergence, s.tolerance_used)
                                               : Trajectories::not_compared;
   for (int k = 0; k < core::kStageCount; ++k) {
     const auto stage = static_cast<Stage>(k);
@@ -197,6 +218,7 @@ nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, con
               {"evidence", is_evidence(s.category)},
               {"trajectories", to_string(s.trajectories)},
               {"max_position_difference", s.divergence},
+              {"tolerance_used", s.tolerance_used},
               {"tolerance", s.tolerance.metres},
               {"tolerance_source", s.tolerance.source}};
     if (s.bodies) j["max_orientation_difference_rad"] = s.orientation_divergence;
@@ -260,9 +282,9 @@ nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, con
             {"min_repeats", kMinRepeatsForInterval},
             {"verdict", "\"within noise\" when ci95 contains 1, else \"cga faster\" or \"cga slower\""},
             {"agreement",
-             "positions (particles, bodies' centres of mass) within the scene's check.max_divergence, and on a "
-             "collision scene within its penetration tolerance; parted otherwise. Orientations: the largest angle "
-             "is reported, no agreement claimed (no scene bounds it)"}}},
+             "every position within d and every moving body's orientation within d / r (r the body's radius), as "
+             "check bounds them between backends; d the scene's check.max_divergence, and on a collision scene at "
+             "most its penetration tolerance; parted otherwise"}}},
           {"scenes", scene_list},
           {"categories", categories}};
 }

@@ -38,15 +38,22 @@ struct Tolerance {
 Tolerance agreement_tolerance(const core::Scene& scene);
 
 // identical: every sampled position and orientation equal, bit for bit;
-// agree ("within tolerance"): positions within the tolerance; parted
-// ("parted (chaotic)"): further apart (chaos amplifies the backends' different
+// agree ("within tolerance"): every position within the tolerance d and every
+// moving body's orientation within d / r (tolerance_used ≤ 1); parted ("parted
+// (chaotic)"): further apart (chaos amplifies the backends' different
 // rounding, as in bodies_in_box: the runs then do different work and are
 // compared per unit of work); not_compared: not both traditional and cga ran
-// to the end. Orientations are not classified: no scene states a tolerance for
-// them, so the summary reports their largest angle and claims nothing.
+// to the end. NaN (a blown-up run) is parted.
 enum class Trajectories { identical, agree, parted, not_compared };
 const char* to_string(Trajectories t);
-Trajectories classify(double position_divergence, double orientation_divergence, const Tolerance& tol);
+Trajectories classify(double position_divergence, double orientation_divergence, double tolerance_used);
+
+// How much of the tolerance d the backends' parting used: the largest over the
+// traditional and cga samples of each particle's |Δx| / d and each moving
+// body's max(|Δx|, r θ) / d, θ the angle between the orientations and r the
+// body's radius (compare/metrics.hpp): the bounds `check` applies between
+// backends, position by d and orientation by d / r. 0 without both backends.
+double tolerance_used(const SceneResult& r, double d);
 
 // One stage of one scene: seconds per repeat of each backend, and what one
 // unit of its work is, counted in each backend's run: "narrowphase pair"
@@ -66,6 +73,7 @@ struct SceneSummary {
   Category category{};
   Tolerance tolerance;
   double divergence = 0, orientation_divergence = 0;  // m, rad: largest over samples
+  double tolerance_used = 0;                          // tolerance_used(r, tolerance.metres)
   bool bodies = false;
   Trajectories trajectories = Trajectories::not_compared;
   std::string not_compared_why;  // set when trajectories == not_compared

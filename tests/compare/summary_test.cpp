@@ -44,14 +44,48 @@ TEST(Summary, AgreementToleranceIsTheCheckCappedByThePenetrationTolerance) {
 }
 
 TEST(Summary, TrajectoriesAgainstTheTolerance) {
-  const Tolerance tol{1e-4, "penetration tolerance"};
-  EXPECT_EQ(classify(0, 0, tol), Trajectories::identical);
-  EXPECT_EQ(classify(0, 1e-9, tol), Trajectories::agree);
-  EXPECT_EQ(classify(1e-4, 0, tol), Trajectories::agree);
-  EXPECT_EQ(classify(1.19, 3.1, tol), Trajectories::parted);
-  EXPECT_EQ(classify(NAN, 0, tol), Trajectories::parted);
+  EXPECT_EQ(classify(0, 0, 0), Trajectories::identical);
+  EXPECT_EQ(classify(0, 1e-9, 0.2), Trajectories::agree);
+  EXPECT_EQ(classify(1e-4, 0, 1.0), Trajectories::agree);
+  EXPECT_EQ(classify(1.19, 3.1, 1e4), Trajectories::parted);
+  EXPECT_EQ(classify(NAN, 0, NAN), Trajectories::parted);
   EXPECT_STREQ(to_string(Trajectories::parted), "parted (chaotic)");
   EXPECT_STREQ(to_string(Trajectories::agree), "within tolerance");
+}
+
+TEST(Summary, ToleranceUsedBoundsPositionsAndOrientationsAsCheckDoes) {
+  // A particle and a 2 × 2 × 2 m box (radius √3 m, its corners) and a static
+  // slab. Sample 1: the particle 3e-7 m apart, the box turned by 4e-7 rad
+  // about z in cga (r θ = 6.93e-7 m), its centre 1e-7 m apart; sample 2: the
+  // slab's orientation wildly apart (static bodies are left out, as in check).
+  // Used: max(3e-7, max(1e-7, √3 · 4e-7)) / 1e-6 = 0.6928.
+  SceneResult r;
+  r.scene.particles.push_back({});
+  core::Body box, slab;
+  box.shape = core::BoxShape{{2, 2, 2}};
+  slab.shape = core::BoxShape{{4, 4, 1}};
+  slab.is_static = true;
+  r.scene.bodies = {box, slab};
+  core::Sample a;
+  a.particles.resize(1);
+  a.bodies.resize(2);
+  core::Sample b = a;
+  b.particles[0].position.x() = 3e-7;
+  b.bodies[0].position.y() = 1e-7;
+  const double half = 2e-7;  // half the angle
+  b.bodies[0].orientation = {std::cos(half), 0, 0, std::sin(half)};
+  core::Sample c = a, d = a;
+  d.bodies[1].orientation = {0, 1, 0, 0};
+  for (const char* name : {"traditional", "cga"}) {
+    BackendResult br;
+    br.run.backend = name;
+    br.run.samples = name == std::string("cga") ? std::vector<core::Sample>{b, d} : std::vector<core::Sample>{a, c};
+    r.backends.push_back(br);
+  }
+  // Tolerance: the rotation angle is exact to ~1e-16 rad (compare/metrics.hpp).
+  EXPECT_NEAR(tolerance_used(r, 1e-6), std::sqrt(3.0) * 4e-7 / 1e-6, 1e-9);
+  r.backends[1].run.samples[0].bodies[0].orientation = {1, 0, 0, 0};
+  EXPECT_NEAR(tolerance_used(r, 1e-6), 0.3, 1e-9);  // the particle's 3e-7 m
 }
 
 namespace {
