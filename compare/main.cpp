@@ -1,6 +1,7 @@
 // gacompare: runs physics scenes through the traditional and geometric-algebra
 // backends and writes comparison reports. Results go to files, logs to stderr.
 // Exit codes: 0 success, 1 a run or check failed, 2 bad usage or bad input.
+#include "compare/accuracy.hpp"
 #include "compare/collide.hpp"
 #include "compare/check.hpp"
 #include "compare/machine.hpp"
@@ -66,6 +67,42 @@ int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std
       }
   }
   compare::write_reports(out, results, compare::machine_info(), repeats);
+  std::cout << out.string() << "\n";
+  return failed ? 1 : 0;
+}
+
+// `compare --accuracy E`: each backend at the tolerance or step that reaches E
+// (compare/accuracy.hpp), the settings cached in DIR/accuracy.json, then timed.
+int run_at_accuracy(const std::vector<core::Scene>& scenes, std::vector<std::string> backends, double target,
+                    int repeats, fs::path out, bool quiet) {
+  if (out.empty()) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
+  std::erase(backends, "bullet");  // no tolerance to search: Bullet steps at a fixed 1/240 s with its own contacts
+  if (backends.empty()) throw input_error("--accuracy: compares traditional and cga; name at least one of them");
+  for (const auto& scene : scenes)  // refuse before anything runs
+    if (const auto why = compare::accuracy_refusal(scene); !why.empty()) throw input_error(why);
+  std::vector<compare::SceneResult> results;
+  std::vector<compare::AccuracyPlan> plans;
+  bool failed = false;
+  for (const auto& scene : scenes) {
+    plans.push_back(compare::find_equal_accuracy(scene, target, backends, out / "accuracy.json", quiet));
+    if (!quiet)
+      std::cerr << "gacompare: " << scene.name << ": settings " << (plans.back().reused ? "reused" : "found")
+                << "; " << repeats << " repeat(s) of " << backends.size() << " backend(s)\n";
+    results.push_back(compare::compare_at_accuracy(scene, plans.back(), repeats));
+    for (const auto& b : results.back().backends)
+      if (b.run.error) {
+        std::cerr << "gacompare: " << scene.name << ": " << b.run.backend << ": " << *b.run.error << "\n";
+        failed = true;
+      }
+  }
+  compare::write_reports(out, results, compare::machine_info(), repeats);
+  std::string all;
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const std::string section = compare::accuracy_section_md(plans[k], results[k]);
+    compare::insert_section(results.size() == 1 ? out / "report.md" : out / results[k].scene.name / "report.md", section);
+    all += "\n# " + results[k].scene.name + "\n" + section;
+  }
+  compare::write_file_atomically(out / "accuracy.md", "# Time at equal accuracy\n" + all);
   std::cout << out.string() << "\n";
   return failed ? 1 : 0;
 }
@@ -321,6 +358,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> cmp_scenes, cmp_backends = compare::backend_names();
   std::string cmp_out;
   int cmp_repeat = 5;
+  double cmp_accuracy = 0;
   auto* cmp = app.add_subcommand("compare", "run scenes through every backend and compare");
   cmp->add_option("scenes", cmp_scenes, "scene files (JSON)")->required();
   cmp->add_option("--out", cmp_out, "report folder (default reports/<scene or compare>-<date>)");
@@ -331,6 +369,10 @@ int main(int argc, char** argv) {
                                            "backends to run, exactly these (default: traditional, cga, and bullet on "
                                            "scenes with collisions that Bullet can simulate)")
                                ->check(CLI::IsMember(compare::backend_names()));
+  cmp->add_option("--accuracy", cmp_accuracy,
+                  "time at equal accuracy: each backend at the tolerance (or step) where its final error against a "
+                  "1e-14 reference is <= E (rad for bodies without particles, m otherwise); cached in DIR/accuracy.json")
+      ->check(CLI::PositiveNumber);
 
   std::vector<std::string> chk_scenes;
   std::string chk_baseline;
@@ -404,6 +446,8 @@ int main(int argc, char** argv) {
   try {
     if (*run)
       return run_and_report(load_all({run_scene}), {run_backend}, compare::Selection::exactly, run_repeat, run_out, quiet);
+    if (*cmp && cmp_accuracy > 0)
+      return run_at_accuracy(load_all(cmp_scenes), cmp_backends, cmp_accuracy, cmp_repeat, cmp_out, quiet);
     if (*cmp)
       return run_and_report(load_all(cmp_scenes), cmp_backends,
                             cmp_backends_opt->count() > 0 ? compare::Selection::exactly

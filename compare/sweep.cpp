@@ -24,12 +24,6 @@ namespace gacompare::compare {
 namespace {
 using json = nlohmann::ordered_json;
 
-std::string fmt(const char* f, double x) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, x);
-  return buf;
-}
-
 // Per measure, the largest error over particles and bodies at the final time and
 // the RMS over every sample and moving object (a static body, never moved, would
 // only dilute it); infinite where the run stopped early.
@@ -148,18 +142,18 @@ std::vector<Unit> sweep_units(const SweepSpec& spec, const core::Scene& scene) {
     if (core::is_adaptive(m)) {
       for (int e = spec.tol_from; e <= spec.tol_to; ++e) {
         const double tol = std::pow(10.0, -e);
-        units.push_back({name + "-tol1e-" + std::to_string(e), name, fmt("tol %.0e", tol), {m, scene.solver.dt, tol, tol}});
+        units.push_back({name + "-tol1e-" + std::to_string(e), name, format_number("tol %.0e", tol), {m, scene.solver.dt, tol, tol}});
       }
     } else {
       double dt = spec.dt_from;
       for (int k = 0; k <= spec.dt_halvings; ++k, dt /= 2)
-        units.push_back({name + "-dt" + fmt("%.6g", dt), name, fmt("dt %.6g", dt), {m, dt, 1e-9, 1e-9}});
+        units.push_back({name + "-dt" + format_number("%.6g", dt), name, format_number("dt %.6g", dt), {m, dt, 1e-9, 1e-9}});
     }
   }
   if (spec.peer && !projection(scene))
     for (int e = spec.tol_from; e <= spec.tol_to; ++e) {
       const double tol = std::pow(10.0, -e);
-      units.push_back({"odeint_cash_karp54-tol1e-" + std::to_string(e), "odeint_cash_karp54", fmt("tol %.0e", tol),
+      units.push_back({"odeint_cash_karp54-tol1e-" + std::to_string(e), "odeint_cash_karp54", format_number("tol %.0e", tol),
                        {core::SolverMethod::cash_karp45, scene.solver.dt, tol, tol}});
     }
   return units;
@@ -211,6 +205,12 @@ json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& ref, 
   for (const Measure m : measures_of(swept)) nothing[std::string(measure_name(m))] = n[m];
   return {{"format", kSweepCellFormat}, {"unit", unit.id}, {"solver", unit.solver}, {"setting", unit.setting},
           {"scene_sha256", swept.sha256}, {"error_of_nothing", nothing}, {"cells", cells}};
+}
+
+std::string format_number(const char* printf_format, double x) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, printf_format, x);
+  return buf;
 }
 
 Measure default_error(const core::Scene& scene) {
@@ -293,7 +293,7 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
   csv << ",seconds_median,seconds_min,seconds_max,steps,evaluations,failure\n";
   // In the CSV a measure not measured (the scene has no object for it, or the
   // setting was refused) is an empty field; a run that stopped early reads inf.
-  auto csv_number = [](double v) { return std::isnan(v) ? std::string() : fmt("%.9g", v); };
+  auto csv_number = [](double v) { return std::isnan(v) ? std::string() : format_number("%.9g", v); };
   for (const auto& r : rows) {
     md << "| " << r.solver << " | " << r.backend << " | " << r.setting << " |";
     if (!r.failure.empty()) {
@@ -301,9 +301,9 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
       for (std::size_t k = 0; k < measures.size() + 4; ++k) md << " |";
       md << "\n";
     } else {
-      for (const Measure m : measures) md << " " << fmt("%.2e", r.final[m]) << " |";
-      md << " " << fmt("%.2e", r.rms[x]) << " | " << fmt("%.3g", 1e3 * r.time) << " ms (" << fmt("%.3g", 1e3 * r.secs.min)
-         << "–" << fmt("%.3g", 1e3 * r.secs.max) << ") | " << (r.steps ? std::to_string(r.steps) : "–") << " | "
+      for (const Measure m : measures) md << " " << format_number("%.2e", r.final[m]) << " |";
+      md << " " << format_number("%.2e", r.rms[x]) << " | " << format_number("%.3g", 1e3 * r.time) << " ms (" << format_number("%.3g", 1e3 * r.secs.min)
+         << "–" << format_number("%.3g", 1e3 * r.secs.max) << ") | " << (r.steps ? std::to_string(r.steps) : "–") << " | "
          << r.evals << " | " << (pareto(r) ? "★" : "") << " |\n";
     }
     std::string failure = r.failure;
@@ -311,12 +311,12 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
     csv << r.solver << "," << r.backend << "," << r.setting;
     for (const Measure m : kMeasures) csv << "," << csv_number(r.final[m]);
     for (const Measure m : kMeasures) csv << "," << csv_number(r.rms[m]);
-    csv << "," << fmt("%.9g", r.time) << "," << fmt("%.9g", r.secs.min) << "," << fmt("%.9g", r.secs.max) << ","
+    csv << "," << format_number("%.9g", r.time) << "," << format_number("%.9g", r.secs.min) << "," << format_number("%.9g", r.secs.max) << ","
         << r.steps << "," << r.evals << "," << failure << "\n";
   }
   if (std::none_of(rows.begin(), rows.end(), usable))
     md << "\nNo cell has a " << words << " error above 0 and below the error of not simulating at all ("
-       << fmt("%.2e", nothing) << " " << unit << "): there is no diagram to draw.\n";
+       << format_number("%.2e", nothing) << " " << unit << "): there is no diagram to draw.\n";
   write_file_atomically(dir / "sweep.md", md.str());
   write_file_atomically(dir / "sweep.csv", csv.str());
 

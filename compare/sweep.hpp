@@ -48,6 +48,9 @@ struct SweepSpec {
   std::optional<Measure> error;   // the diagram's x-axis; nullopt: default_error(scene)
 };
 
+// One number through a printf format ("%.3g"), as the reports write them.
+std::string format_number(const char* printf_format, double x);
+
 // Orientation for a scene with bodies and no particles, position otherwise.
 Measure default_error(const core::Scene& scene);
 

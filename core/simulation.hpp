@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <sstream>
 
 namespace gacompare::core {
 
@@ -68,6 +69,7 @@ struct Simulation {
       y0 = y;
       solver.advance(f, t, t1, y, profile, after);
       ++c.counters.steps;
+      fail_if_nonfinite(m, y, "integrate", t);  // before the broadphase sorts on it
       Detection d = c.detect(m.bodies, bodies(y), profile);
       if (d.max_depth > tol) {
         ScopedStage timed(profile, Stage::time_of_impact);
@@ -127,10 +129,24 @@ struct Simulation {
         }
         y.swap(ym);
         t = t_star;
+        fail_if_nonfinite(m, y, "time_of_impact", t);
         d = c.detect(m.bodies, bodies(y), inner);
       }
-      if (!d.hits.empty()) c.respond(m.bodies, bodies(y), d, t - t0, profile);
+      if (!d.hits.empty()) {
+        c.respond(m.bodies, bodies(y), d, t - t0, profile);
+        fail_if_nonfinite(m, y, "response", t);
+      }
     }
+  }
+  // A collision step names the stage a non-finite state came from (the
+  // simulator cannot replay one: the collider's state moves on). One pass over
+  // the bodies a step, next to the step limit's and the broadphase's own.
+  static void fail_if_nonfinite(const Model& m, const std::vector<double>& y, const char* stage, double t) {
+    const std::string bad = first_nonfinite(m, y);
+    if (bad.empty()) return;
+    std::ostringstream msg;
+    msg << "non-finite state: " << bad << ", stage " << stage << ", at t=" << t;
+    throw run_error(msg.str());
   }
   // The physical error norm of an adaptive step (core/scene.hpp ErrorNorm):
   // particles per component (their numbers are positions and velocities

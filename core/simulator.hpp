@@ -9,7 +9,9 @@
 #include "core/ode.hpp"
 #include "core/run.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <concepts>
 #include <span>
 #include <sstream>
@@ -60,6 +62,47 @@ std::vector<int> particle_layout(std::size_t particles);
 // The output times: every `every` seconds from 0, and `duration` itself.
 std::vector<double> output_times(const Scene& scene);
 
+// Which stage a non-finite state came from, found only once a run has failed
+// (no check costs anything while it runs): the failed output interval is
+// replayed from the last sample's state with a fresh solver, checking every
+// derivative. A finite state whose derivative is not finite is the derivative's
+// stage (`forces`, or `forces or constraints` where the scene has constraints:
+// both are inside one derivative); finite derivatives and a non-finite state
+// are the solver's combination, `integrate`. A scene with collisions names its
+// own stages as it goes (core/simulation.hpp), so it is not replayed: its
+// collider's counters and contact cache would count the interval twice.
+template <Backend B>
+std::string nonfinite_stage(const Scene& scene, const typename B::Model& model, double t0, double t1,
+                            const std::vector<double>& y0) {
+  if (scene.find_effect<Collisions>()) return "integrate";
+  struct Found {};
+  const char* stage = "integrate";
+  std::vector<double> y = y0;
+  OdeSolver solver(scene.solver, y.size(), B::velocity_of(model));
+  solver.set_error_norm([&](std::span<const double> a, std::span<const double> b, std::span<const double> err) {
+    return B::error_ratio(model, scene.solver, a, b, err);
+  });
+  Profile scratch;
+  const auto finite = [](std::span<const double> v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+  };
+  auto f = [&](double t, std::span<const double> yy, std::span<double> dy) {
+    B::derivative(model, t, yy, dy, scratch);
+    if (finite(yy) && !finite(dy)) {
+      stage = scene.constraints.empty() ? "forces" : "forces or constraints";
+      throw Found{};
+    }
+  };
+  auto after = [&](std::vector<double>& yy) { return B::after_step(model, yy, scratch); };
+  double t = t0;
+  try {
+    solver.advance(f, t, t1, y, scratch, after);
+  } catch (const Found&) {
+  } catch (const Error&) {
+  }
+  return stage;
+}
+
 // Runs a scene; generators must have been expanded (expand_generators), so that
 // the samples' particles match scene.particles.
 template <Backend B>
@@ -91,6 +134,7 @@ Run simulate(const Scene& scene) {
   const auto start = std::chrono::steady_clock::now();
   double t = 0;
   record(t);
+  std::vector<double> y_last = y;  // the state at the last sample: where a failed interval is replayed from
   for (std::size_t k = 1; k < times.size(); ++k) {
     try {
       B::advance(model, solver, f, t, times[k], y, run.profile, after);
@@ -100,11 +144,14 @@ Run simulate(const Scene& scene) {
     }
     if (auto bad = B::first_nonfinite(model, y); !bad.empty()) {
       std::ostringstream msg;
-      msg << "non-finite state: " << bad << ", stage integrate, between t=" << times[k - 1] << " and t=" << t;
+      msg << "non-finite state: " << bad << ", stage "
+          << nonfinite_stage<B>(scene, model, times[k - 1], times[k], y_last) << ", between t=" << times[k - 1]
+          << " and t=" << t;
       run.error = msg.str();
       break;
     }
     record(t);
+    y_last = y;
   }
   run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.solver = solver.stats();

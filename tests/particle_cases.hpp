@@ -82,7 +82,9 @@ TYPED_TEST_P(ParticleCases, GravityConservesEnergyAndPinnedParticlesStay) {
 }
 
 // A particle placed on an attracting point gets an infinite force: the run stops
-// naming the particle, the stage and the time, and keeps the samples before it.
+// naming the particle, the stage (forces: its derivative was not finite at a
+// finite state, found by replaying the failed interval) and the time, and
+// keeps the samples before it.
 TYPED_TEST_P(ParticleCases, NonFiniteStateStopsTheRunByName) {
   const auto scene = scene_from(R"({"name": "n", "duration": 1.0, "output": {"every": 0.5},
     "solver": {"method": "rk4", "dt": 0.01},
@@ -92,9 +94,24 @@ TYPED_TEST_P(ParticleCases, NonFiniteStateStopsTheRunByName) {
   const core::Run run = core::simulate<TypeParam>(scene);
   ASSERT_TRUE(run.error.has_value());
   EXPECT_NE(run.error->find("particle 'doomed'"), std::string::npos) << *run.error;
-  EXPECT_NE(run.error->find("stage integrate"), std::string::npos) << *run.error;
+  EXPECT_NE(run.error->find("stage forces"), std::string::npos) << *run.error;
   EXPECT_NE(run.error->find("t=0"), std::string::npos) << *run.error;
   EXPECT_EQ(run.samples.size(), 1u);  // the t = 0 sample survives
+}
+
+// A finite derivative can still overflow the state: at 1.5e308 m/s Euler's
+// x + h v passes the largest double (1.8e308) in the third half-second step,
+// in the solver's combination. The stage named is integrate, and the samples
+// before it survive.
+TYPED_TEST_P(ParticleCases, OverflowInTheSolverIsNamedIntegrate) {
+  const auto scene = scene_from(R"({"name": "n", "duration": 2.0, "output": {"every": 0.5},
+    "solver": {"method": "euler", "dt": 0.5},
+    "particles": [{"name": "fast", "mass": 1.0, "position": [0, 0, 0], "velocity": [1.5e308, 0, 0]}]})");
+  const core::Run run = core::simulate<TypeParam>(scene);
+  ASSERT_TRUE(run.error.has_value());
+  EXPECT_NE(run.error->find("particle 'fast'"), std::string::npos) << *run.error;
+  EXPECT_NE(run.error->find("stage integrate"), std::string::npos) << *run.error;
+  EXPECT_EQ(run.samples.size(), 3u);  // t = 0, 0.5 and 1 (x = 1.5e308); at 1.5 s x = 2.25e308 overflows
 }
 
 // The collisions effect acts between rigid bodies; on particles alone it is refused.
@@ -132,7 +149,7 @@ TYPED_TEST_P(ParticleCases, InitialConstraintViolationIsRefused) {
 
 REGISTER_TYPED_TEST_SUITE_P(ParticleCases, ProjectileWithLinearDragMatchesClosedForm,
                             FallWithQuadraticDragMatchesClosedForm, GravityConservesEnergyAndPinnedParticlesStay,
-                            NonFiniteStateStopsTheRunByName, CollisionsWithoutBodiesAreRefused,
+                            NonFiniteStateStopsTheRunByName, OverflowInTheSolverIsNamedIntegrate, CollisionsWithoutBodiesAreRefused,
                             InitialConstraintViolationIsRefused);
 
 }  // namespace gacompare::testing

@@ -332,3 +332,37 @@ TEST(Cli, VersionHelpAndList) {
 }
 
 }  // namespace
+
+// compare --accuracy (compare/accuracy.hpp): a scene with collisions is refused
+// in one line before anything runs; a fixed-step particle scene gets its step
+// from the cache on a rerun, and the report leads with the equal-accuracy table.
+TEST(Cli, CompareAtAccuracyRefusesCollisionsAndReusesItsCache) {
+  const fs::path refused = fresh_dir("accuracy_refused");
+  const Result r = gacompare("compare " + std::string(GACOMPARE_DATA_DIR) + "/scenes/cube_drop_flat.json --accuracy 1e-6 --quiet --out " +
+                             refused.string());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("collisions"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(refused));
+
+  const fs::path out = fresh_dir("accuracy");
+  const std::string cmd = "compare " + std::string(GACOMPARE_DATA_DIR) +
+                          "/scenes/falling_quadratic_drag.json --accuracy 1e-9 --repeat 1 --quiet --out " + out.string();
+  const Result first = gacompare(cmd);
+  ASSERT_EQ(first.code, 0) << first.err;
+  const json plan = read_json(out / "accuracy.json");
+  const auto& entry = plan["scenes"]["falling_quadratic_drag"];
+  EXPECT_EQ(entry["measure"], "position");
+  EXPECT_EQ(entry["adaptive"], false);
+  for (const char* b : {"traditional", "cga"}) EXPECT_LE(entry["backends"][b]["error"].get<double>(), 1e-9) << b;
+  std::ifstream md(out / "report.md");
+  std::stringstream text;
+  text << md.rdbuf();
+  EXPECT_NE(text.str().find("## Time at equal accuracy"), std::string::npos);
+  EXPECT_NE(text.str().find("settings differ per backend"), std::string::npos);
+  const auto written = fs::last_write_time(out / "accuracy.json");
+  const Result again = gacompare(cmd);
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_EQ(fs::last_write_time(out / "accuracy.json"), written);
+  EXPECT_EQ(read_json(out / "accuracy.json"), plan);
+}
