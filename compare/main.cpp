@@ -95,7 +95,7 @@ int run_at_accuracy(const std::vector<core::Scene>& scenes, std::vector<std::str
         failed = true;
       }
   }
-  compare::write_reports(out, results, compare::machine_info(), repeats);
+  compare::write_reports(out, results, compare::machine_info(), repeats, target);
   std::string all;
   for (std::size_t k = 0; k < results.size(); ++k) {
     const std::string section = compare::accuracy_section_md(plans[k], results[k]);

@@ -316,7 +316,7 @@ void verdict(std::ostringstream& o, const std::vector<SceneSummary>& scenes) {
   for (const auto& text : shared)
     o << "The " << text << ": the same code runs in both backends, so this is reported, not evidence. ";
 
-  int identical = 0, agree = 0;
+  int identical = 0, agree = 0, own = 0;
   const SceneSummary* closest = nullptr;  // the agreeing scene nearest its tolerance
   std::vector<std::string> parted, not_compared;
   for (const auto& s : scenes) {
@@ -326,26 +326,34 @@ void verdict(std::ostringstream& o, const std::vector<SceneSummary>& scenes) {
       if (!closest || s.tolerance_used > closest->tolerance_used) closest = &s;
     }
     if (s.trajectories == Trajectories::parted) parted.push_back(s.name);
+    if (s.trajectories == Trajectories::own_settings) ++own;
     if (s.trajectories == Trajectories::not_compared) not_compared.push_back(s.name + " (" + s.not_compared_why + ")");
   }
-  o << "Trajectories: identical at every sample on " << identical << " of " << scenes.size() << " scenes";
-  if (agree)
-    o << ", within the scene's own tolerance on " << agree << " (nearest it: " << closest->name << ", "
-      << fmt("%.2g", 100 * closest->tolerance_used) << "% of " << fmt("%.0e", closest->tolerance.metres) << " m)";
-  const auto list = [](const std::vector<std::string>& v) {
-    std::string out;
-    for (const auto& x : v) out += (out.empty() ? "" : ", ") + x;
-    return out;
-  };
-  if (!parted.empty()) o << "; parted (chaotic) on " << list(parted) << ", where no agreement is claimed";
-  if (!not_compared.empty()) o << "; not compared on " << list(not_compared);
-  o << ". Coding simplicity is not measured here: compare `traditional/` and `cga/` side by side.\n";
+  if (own)
+    o << "Each backend ran at its own setting, the one reaching the same accuracy (`--accuracy`), on " << own << " of "
+      << scenes.size() << " scenes: their trajectories differ by design and no agreement between them is claimed. ";
+  if (own < static_cast<int>(scenes.size())) {
+    o << "Trajectories: identical at every sample on " << identical << " of " << scenes.size() << " scenes";
+    if (agree)
+      o << ", within the scene's own tolerance on " << agree << " (nearest it: " << closest->name << ", "
+        << fmt("%.2g", 100 * closest->tolerance_used) << "% of " << fmt("%.0e", closest->tolerance.metres) << " m)";
+    const auto list = [](const std::vector<std::string>& v) {
+      std::string out;
+      for (const auto& x : v) out += (out.empty() ? "" : ", ") + x;
+      return out;
+    };
+    if (!parted.empty()) o << "; parted (chaotic) on " << list(parted) << ", where no agreement is claimed";
+    if (!not_compared.empty()) o << "; not compared on " << list(not_compared);
+    o << ". ";
+  }
+  o << "Coding simplicity is not measured here: compare `traditional/` and `cga/` side by side.\n";
 }
 }  // namespace
 
-std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats) {
+std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
+                              double equal_accuracy) {
   std::vector<SceneSummary> scenes;
-  for (const auto& r : results) scenes.push_back(summarise_scene(r));
+  for (const auto& r : results) scenes.push_back(summarise_scene(r, equal_accuracy > 0));
   std::ostringstream o;
   o << "# gacompare: " << results.size() << " scenes\n\n" << header(machine, repeats) << "\n";
   o << "| scene | category | traditional | cga | cga / traditional [95% CI] | apart (m) | apart (rad) | "
@@ -393,7 +401,7 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
 }
 
 void write_reports(const std::filesystem::path& dir, const std::vector<SceneResult>& results,
-                   const MachineInfo& machine, int repeats) {
+                   const MachineInfo& machine, int repeats, double equal_accuracy) {
   auto write_scene = [&](const std::filesystem::path& d, const SceneResult& r) {
     write_file_atomically(d / "results.json", results_json(r, machine, repeats).dump(1) + "\n");
     write_file_atomically(d / "stages.csv", stage_csv({r}));
@@ -407,10 +415,10 @@ void write_reports(const std::filesystem::path& dir, const std::vector<SceneResu
   for (const auto& r : results) write_scene(dir / r.scene.name, r);
   write_file_atomically(dir / "stages.csv", stage_csv(results));
   std::vector<SceneSummary> scenes;
-  for (const auto& r : results) scenes.push_back(summarise_scene(r));
-  write_file_atomically(dir / "summary.json", summary_json(scenes, machine, repeats).dump(1) + "\n");
-  write_file_atomically(dir / "report.md", summary_report_md(results, machine, repeats));
-  write_file_atomically(dir / "report.html", summary_report_html(results, machine, repeats));
+  for (const auto& r : results) scenes.push_back(summarise_scene(r, equal_accuracy > 0));
+  write_file_atomically(dir / "summary.json", summary_json(scenes, machine, repeats, equal_accuracy).dump(1) + "\n");
+  write_file_atomically(dir / "report.md", summary_report_md(results, machine, repeats, equal_accuracy));
+  write_file_atomically(dir / "report.html", summary_report_html(results, machine, repeats, equal_accuracy));
 }
 
 }  // namespace gacompare::compare

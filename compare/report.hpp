@@ -16,13 +16,17 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
 // The stage table as CSV: scene,backend,stage,median_s,min_s,max_s,calls.
 std::string stage_csv(const std::vector<SceneResult>& results);
 // One line per scene: total time per backend, cga/traditional ratio, divergence.
-std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats);
+// `equal_accuracy` > 0: the backends ran at their own settings reaching that
+// error (`compare --accuracy`): they differ by design and are not classified.
+std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
+                              double equal_accuracy = 0);
 
 // report.html: the same tables (converted from the markdown, so they never
 // disagree) and inline SVG figures drawn by gnuplot — energy change, constraint
 // violation, rotation drift and the divergence between backends over time.
 std::string scene_report_html(const SceneResult& r, const MachineInfo& machine, int repeats);
-std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats);
+std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
+                                double equal_accuracy = 0);
 // The pieces: markdown (headings, paragraphs, pipe tables) as HTML, and a
 // self-contained page around a body.
 std::string markdown_to_html(const std::string& md);
@@ -31,8 +35,9 @@ std::string html_page(const std::string& title, const std::string& body);
 // Writes results.json, report.md, report.html and stages.csv for one scene into `dir`, or, for
 // several, one such folder per scene under `dir` plus dir/report.md and
 // dir/stages.csv summarising them. Every file is written atomically.
+// `equal_accuracy`: as for summary_report_md (and summary.json).
 void write_reports(const std::filesystem::path& dir, const std::vector<SceneResult>& results,
-                   const MachineInfo& machine, int repeats);
+                   const MachineInfo& machine, int repeats, double equal_accuracy = 0);
 
 // A time in the unit that suits it: "812 ns", "3.41 µs", "12.5 ms", "2.04 s".
 std::string format_seconds(double s);

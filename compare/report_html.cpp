@@ -227,8 +227,9 @@ std::string scene_report_html(const SceneResult& r, const MachineInfo& machine, 
   return html_page(r.scene.name + " — gacompare", markdown_to_html(scene_report_md(r, machine, repeats)) + figures(r));
 }
 
-std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats) {
-  return html_page("gacompare", markdown_to_html(summary_report_md(results, machine, repeats)));
+std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
+                                double equal_accuracy) {
+  return html_page("gacompare", markdown_to_html(summary_report_md(results, machine, repeats, equal_accuracy)));
 }
 
 }  // namespace gacompare::compare

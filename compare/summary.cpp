@@ -91,6 +91,7 @@ const char* to_string(Trajectories t) {
     case Trajectories::identical: return "identical";
     case Trajectories::agree: return "within tolerance";
     case Trajectories::parted: return "parted (chaotic)";
+    case Trajectories::own_settings: return "own settings (equal accuracy)";
     case Trajectories::not_compared: return "not compared";
   }
   return "?";
@@ -122,7 +123,7 @@ double tolerance_used(const SceneResult& r, double d) {
   return used;
 }
 
-SceneSummary summarise_scene(const SceneResult& r) {
+SceneSummary summarise_scene(const SceneResult& r, bool own_settings) {
   SceneSummary s;
   s.name = r.scene.name;
   s.category = category_of(r.scene);
@@ -139,8 +140,9 @@ SceneSummary summarise_scene(const SceneResult& r) {
   for (const auto* b : {trad, cga})
     if (b->run.error) s.not_compared_why = b->run.backend + " stopped early";
   s.tolerance_used = tolerance_used(r, s.tolerance.metres);
-  s.trajectories = s.not_compared_why.empty() ? classify(s.divergence, s.orientation_divergence, s.tolerance_used)
-                                              : Trajectories::not_compared;
+  s.trajectories = !s.not_compared_why.empty() ? Trajectories::not_compared
+                   : own_settings                ? Trajectories::own_settings
+                                                 : classify(s.divergence, s.orientation_divergence, s.tolerance_used);
   for (int k = 0; k < core::kStageCount; ++k) {
     const auto stage = static_cast<Stage>(k);
     if (!trad->run.profile.ran(stage) && !cga->run.profile.ran(stage)) continue;
@@ -210,7 +212,7 @@ Aggregate aggregate(const std::vector<SceneSummary>& scenes, Category c, std::op
 }
 
 nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, const MachineInfo& machine,
-                                    int repeats) {
+                                    int repeats, double equal_accuracy) {
   json scene_list = json::array();
   for (const auto& s : scenes) {
     json j = {{"name", s.name},
@@ -267,6 +269,7 @@ nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, con
            {{"cpu", machine.cpu}, {"compiler", machine.compiler}, {"date", machine.date},
             {"build_type", machine.build_type}}},
           {"repeats", repeats},
+          {"equal_accuracy", equal_accuracy > 0 ? json(equal_accuracy) : json(nullptr)},
           {"method",
            {{"ratio",
              "time-weighted cga/traditional: the sum over a category's scenes of the mean cga seconds per repeat "

@@ -43,8 +43,10 @@ Tolerance agreement_tolerance(const core::Scene& scene);
 // (chaotic)"): further apart (chaos amplifies the backends' different
 // rounding, as in bodies_in_box: the runs then do different work and are
 // compared per unit of work); not_compared: not both traditional and cga ran
-// to the end. NaN (a blown-up run) is parted.
-enum class Trajectories { identical, agree, parted, not_compared };
+// to the end; own_settings: each backend ran at its own solver setting
+// (`compare --accuracy`), so they differ by design, are neither classified
+// nor compared per unit of work. NaN (a blown-up run) is parted.
+enum class Trajectories { identical, agree, parted, own_settings, not_compared };
 const char* to_string(Trajectories t);
 Trajectories classify(double position_divergence, double orientation_divergence, double tolerance_used);
 
@@ -79,7 +81,8 @@ struct SceneSummary {
   std::string not_compared_why;  // set when trajectories == not_compared
   std::vector<StageTimes> stages;  // every stage either backend ran
 };
-SceneSummary summarise_scene(const SceneResult& r);
+// `own_settings`: the backends ran at different solver settings (`compare --accuracy`).
+SceneSummary summarise_scene(const SceneResult& r, bool own_settings = false);
 
 // The cga time scaled to the traditional run's work: seconds × traditional_work
 // / cga_work, i.e. the time per unit of work compared. Unscaled when either
@@ -111,6 +114,8 @@ Aggregate aggregate(const std::vector<SceneSummary>& scenes, Category c, std::op
 // DIR/summary.json: {"tool", "machine", "repeats", "method": {how the ratios
 // and intervals are computed}, "scenes": [...], "categories": {name: {"evidence",
 // "scenes", "overall": {"ratio", "ci95", "verdict", ...}, "stages": {...}}}}.
-nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, const MachineInfo& machine, int repeats);
+// `equal_accuracy` > 0: the runs were timed at that accuracy (`compare --accuracy`).
+nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, const MachineInfo& machine, int repeats,
+                                    double equal_accuracy = 0);
 
 }  // namespace gacompare::compare
