@@ -80,20 +80,23 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     if (body.inv_mass == 0) continue;  // static: never moves
     const Vector3 v = body.inv_mass * vec_at(y, at.p);
     const Rotor3 r = rotor_at(y, at.rot);
-    const Rotor3 unit = r / std::sqrt(norm2(r));
     // Ω_body from the normalised rotor (issue #13). With R itself, R̃ L R and
     // the sandwich back to Ω each scale as |R|², so a drifting norm changed
     // the rotation rate as |R|⁴ and the error control paid for it in steps
     // (2.0× the matrix's steps at equal orientation error on the spinning
     // top). Ṙ = −½ Ω R = −½ R Ω_body (Ω R = R Ω_body R̃ R) then scales as |R|,
     // as the quaternion's q̇ = ½ ω q does, and costs one sandwich, not two.
-    const Bivector3 omega_body = apply(body.inv_inertia, sandwich(reverse(unit), biv_at(y, at.l)));
+    // The sandwich is quadratic in R, so R̂̃ L R̂ = R̃ L R / |R|²: one division,
+    // no square root (the unit rotor is formed only for drag and pushes).
+    const double inv_norm2 = 1 / norm2(r);
+    const Bivector3 omega_body = apply(body.inv_inertia, sandwich(reverse(r), biv_at(y, at.l))) * inv_norm2;
+    const auto unit = [&] { return r * std::sqrt(inv_norm2); };
     const core::BodyEffects& fx = m.effects;
     Vector3 force{};
     Bivector3 torque{};
     if (fx.has_gravity) force += body.mass * vector3(fx.gravity);
     if (fx.has_linear_drag || fx.has_quadratic_drag) {
-      const Bivector3 omega = sandwich(unit, omega_body);  // §2.3.2: Ω = R Ω_body R̃
+      const Bivector3 omega = sandwich(unit(), omega_body);  // §2.3.2: Ω = R Ω_body R̃
       if (fx.has_linear_drag) force -= fx.linear_k * v, torque -= fx.linear_k_angular * omega;
       if (fx.has_quadratic_drag) {
         const double speed = std::sqrt(scalar_product(v, v)), spin = std::sqrt(-scalar_product(omega, omega));
@@ -104,7 +107,7 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
       if (push.body == b && t >= push.from && t < push.until) {
         const Vector3 f = vector3(push.force);
         force += f;
-        torque += sandwich(unit, vector3(push.point)) ^ f;  // τ = (R p R̃) ∧ F
+        torque += sandwich(unit(), vector3(push.point)) ^ f;  // τ = (R p R̃) ∧ F
       }
     put(dydt, at.x, v);
     put(dydt, at.rot, -0.5 * (r * omega_body));  // eq. 35

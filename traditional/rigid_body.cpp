@@ -43,14 +43,24 @@ Layout layout(const RigidBodies::Model& m, std::size_t b) {
   const std::size_t base = b * m.stride, rot = m.rotation == core::Rotation::matrix ? 9 : 4;
   return {base, base + 3, base + 3 + rot, base + 6 + rot};
 }
-// The rotation the state stands for. A quaternion is normalised first, as the
-// cga backend normalises its rotor (one policy, issue #13): Eigen's
+// The rotation the state stands for. A quaternion's is that of q/|q|, as the
+// cga backend reads its rotor (one policy, issue #13): Eigen's
 // toRotationMatrix assumes a unit quaternion, so a drifted one gave a matrix
 // that is not a rotation, and ω = R I⁻¹ Rᵀ L a rate off by the drift. The
-// matrix state is used as it is: making it a rotation takes a polar
-// decomposition, and its drift is what renormalise is for.
+// homogeneous form (every entry quadratic in q) divided by |q|² is exact for
+// any norm and needs no square root. The matrix state is used as it is:
+// making it a rotation takes a polar decomposition, and its drift is what
+// renormalise is for.
+Mat rotation_of(const Eigen::Quaterniond& q) {
+  const double w = q.w(), x = q.x(), y = q.y(), z = q.z(), s = 1 / q.squaredNorm();
+  Mat r;
+  r << w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y),
+       2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x),
+       2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z;
+  return s * r;
+}
 Mat rotation(const RigidBodies::Model& m, std::span<const double> y, const Layout& at) {
-  return m.rotation == core::Rotation::matrix ? matrix_at(y, at.rot) : quat_at(y, at.rot).normalized().toRotationMatrix();
+  return m.rotation == core::Rotation::matrix ? matrix_at(y, at.rot) : rotation_of(quat_at(y, at.rot));
 }
 }  // namespace
 
