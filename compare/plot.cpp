@@ -13,13 +13,20 @@
 namespace gacompare::compare {
 
 namespace {
-std::string quoted(const std::string& s) {  // a gnuplot double-quoted string
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
+// Text (scene and body names come from other people's files) as a gnuplot
+// single-quoted string: gnuplot runs `backquoted` commands inside double
+// quotes but not inside single quotes, where the only escape is '' for a
+// quote. A control character (a newline would end the command and start
+// another) becomes '?'. Tested with a name that would touch a file.
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\'') out += "''";
+    else if (u < 0x20 || u == 0x7f) out += '?';
+    else out += c;
   }
-  return out + "\"";
+  return out + "'";
 }
 }  // namespace
 

@@ -367,7 +367,18 @@ class Loader {
                                       "check"};
     Obj o({ctx_, &root, ""}, keys);
     Scene s;
-    s.name = str(o.req("name"));
+    {
+      // The scene's name names its report folder and its baseline file: it is
+      // data, never a path. No separators, no control characters, not . or ..
+      const Val v = o.req("name");
+      s.name = str(v);
+      const bool path_like = s.name == "." || s.name == ".." ||
+                             std::any_of(s.name.begin(), s.name.end(), [](char c) {
+                               const auto u = static_cast<unsigned char>(c);
+                               return c == '/' || c == '\\' || u < 0x20 || u == 0x7f;
+                             });
+      if (path_like) v.expected("a name without '/', '\\' or control characters, and not '.' or '..' (it names files)");
+    }
     if (auto d = o.opt("description")) s.description = str(*d, false);
     s.duration = number(o.req("duration"), Range::positive);
     static constexpr Keys<1> output_keys = {"every"};

@@ -615,5 +615,25 @@ TEST(SceneLoad, DeeplyNestedInputDoesNotCrash) {
   EXPECT_EQ(msg, "deep.json: /particles/0: expected an object, got an array of 1 element");
 }
 
+// A scene's name names its report folder and baseline file, so a name that is
+// a path (issue #16: "../x" made compare write outside --out) or carries a
+// control character is refused with one line naming the key; ordinary names
+// with spaces, dots and brackets load.
+TEST(SceneLoad, NamesThatArePathsAreRefused) {
+  const auto with_name = [](const std::string& name) {
+    json j = {{"name", name}, {"duration", 1.0}, {"output", {{"every", 0.5}}}, {"solver", {{"method", "rk4"}}},
+              {"particles", json::array({{{"name", "p"}, {"mass", 1.0}, {"position", {0, 0, 0}}}})}};
+    return j.dump();
+  };
+  const std::vector<std::string> bad_names = {"../escape", "a/b", "a\\b", ".", "..", "line\nbreak", "bell\x07"};
+  for (const std::string& bad : bad_names) {
+    const std::string what = input_error_of([&] { parse_scene(with_name(bad), "s.json"); });
+    EXPECT_NE(what.find("s.json: /name:"), std::string::npos) << what;
+    EXPECT_NE(what.find("it names files"), std::string::npos) << what;
+  }
+  for (const std::string good : {"drop test 2", "v1.2", "net[3][4]", "x`y`"})
+    EXPECT_EQ(parse_scene(with_name(good), "s.json").name, good);
+}
+
 }  // namespace
 }  // namespace gacompare::core
