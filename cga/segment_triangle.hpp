@@ -60,10 +60,13 @@ struct PreparedTriangle {
     const double alpha = scalar_product(pi, L0), beta = scalar_product(pi, L1);
     if (!(std::abs(alpha - beta) > kSinTol * pi_norm * (l1 - l0).norm())) return std::nullopt;  // parallel
     if ((alpha > 0 && beta > 0) || (alpha < 0 && beta < 0)) return std::nullopt;              // one side
-    const Line line = widen<Line::blades>((L0 ^ L1) ^ n_inf());
-    const Bivector5 flat = pi | line;  // the meet
-    if (!(std::abs(flat[blade::eebar]) > 0)) return std::nullopt;
-    const Eigen::Vector3d point = detail::flat_point(flat);
+    // The meet π⌋(L0 ∧ L1 ∧ n) = α L1∧n − β L0∧n (above) is the flat point of
+    // α L1 − β L0, of weight α − β (≠ 0: not parallel): its point is read
+    // from α and β directly, without forming the line's trivector and the
+    // contraction (issue #13: the cga form took 2.1× the twin's time that way).
+    // Tested against an independent 3×3 solve (tests/narrowphase_cases.hpp);
+    // the manifold's cut, the same formula, against the generic meet.
+    const Eigen::Vector3d point = (alpha * l1 - beta * l0) / (alpha - beta);
     const ConformalPoint I = up(point);
     const std::array<double, 3> bary{scalar_product(reciprocal[0], I), scalar_product(reciprocal[1], I),
                                      scalar_product(reciprocal[2], I)};
