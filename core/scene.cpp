@@ -386,6 +386,12 @@ class Loader {
     const Val every = out.req("every");
     s.output_every = number(every, Range::positive);
     if (s.output_every > s.duration) every.expected("a number > 0 and <= duration (" + fmt(s.duration) + ")");
+    // Every sample is kept in memory and written out: a bound on their number
+    // turns a typo (every: 1e-300, duration: 1e308) into this line instead of
+    // an overflowing count or a machine out of memory (issue #16).
+    if (s.duration / s.output_every > kMaxSamples)
+      every.expected("an interval giving at most " + fmt(kMaxSamples) + " samples (duration / every = " +
+                     fmt(s.duration / s.output_every) + ")");
     s.solver = solver(o.req("solver"));
     if (auto c = o.opt("constraint_solver")) s.constraint_solver = constraint_solver(*c);
     if (auto c = o.opt("rigid_body")) s.rigid_body = rigid_body(*c);

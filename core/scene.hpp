@@ -180,6 +180,10 @@ struct CheckSpec {
   std::optional<double> max_rotation_drift;        // ‖RᵀR − I‖, |qq* − 1|, |RR̃ − 1|
 };
 
+// The most output samples a scene may ask for (duration / output.every): a
+// million samples of a few bodies are already hundreds of megabytes of results.
+inline constexpr double kMaxSamples = 1e6;
+
 struct Scene {
   std::string name;
   std::string description;

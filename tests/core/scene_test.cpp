@@ -635,5 +635,22 @@ TEST(SceneLoad, NamesThatArePathsAreRefused) {
     EXPECT_EQ(parse_scene(with_name(good), "s.json").name, good);
 }
 
+// Every output sample is kept: a scene asking for more than kMaxSamples of
+// them (issue #16: every 1e-300, or duration 1e308, crashed counting them, and
+// every 1e-9 over 10 s ran out of memory) is refused naming output.every.
+TEST(SceneLoad, TooManySamplesAreRefused) {
+  const auto scene = [](const std::string& duration, const std::string& every) {
+    return R"({"name": "s", "duration": )" + duration + R"(, "output": {"every": )" + every +
+           R"(}, "solver": {"method": "rk4"}, "particles": [{"name": "p", "mass": 1, "position": [0, 0, 0]}]})";
+  };
+  for (const auto& [d, e] : std::vector<std::pair<std::string, std::string>>{
+           {"1", "1e-300"}, {"1e308", "1"}, {"10", "1e-9"}}) {
+    const std::string what = input_error_of([&] { parse_scene(scene(d, e), "s.json"); });
+    EXPECT_NE(what.find("s.json: /output/every:"), std::string::npos) << what;
+    EXPECT_NE(what.find("samples"), std::string::npos) << what;
+  }
+  EXPECT_NO_THROW(parse_scene(scene("10", "1e-5"), "s.json"));  // exactly 1e6 samples
+}
+
 }  // namespace
 }  // namespace gacompare::core
