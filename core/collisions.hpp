@@ -226,18 +226,26 @@ struct Collider {
   // since the last accepted state: warm-started impulses scale with it.
   void respond(const Model& m, std::span<double> y, const Detection& d, double dt, Profile& profile) const {
     ScopedStage timed(profile, Stage::response);
-    Motions motion;  // the bodies in contact, read once
+    // The bodies in contact, read once, in slots the rows index (no lookup in
+    // the solver's sweeps).
+    Motions motion;
+    std::vector<int> body_of;  // slot → body
+    std::map<int, std::size_t> slot_of;
+    const auto slot = [&](int b) {
+      const auto [it, fresh] = slot_of.emplace(b, motion.size());
+      if (fresh) motion.push_back(Bodies::motion(m, y, static_cast<std::size_t>(b))), body_of.push_back(b);
+      return it->second;
+    };
     std::vector<Row> rows;
     std::vector<char> resting_pair(d.hits.size(), 0);
     for (std::size_t hi = 0; hi < d.hits.size(); ++hi) {
       const auto& h = d.hits[hi];
       const double eps = std::min(setup.restitution[h.a], setup.restitution[h.b]);
-      for (const int b : {h.a, h.b})
-        if (!motion.count(b)) motion.emplace(b, Bodies::motion(m, y, static_cast<std::size_t>(b)));
-      const Motion& ma = motion.at(h.a);
-      const Motion& mb = motion.at(h.b);
+      const std::size_t sa = slot(h.a), sb = slot(h.b);
+      const Motion& ma = motion[sa];
+      const Motion& mb = motion[sb];
       for (const auto& c : h.features) {
-        Row r{h.a, h.b, hi, c.normal, c.point - Bodies::position(ma), c.point - Bodies::position(mb),
+        Row r{h.a, h.b, sa, sb, hi, c.normal, c.point - Bodies::position(ma), c.point - Bodies::position(mb),
               Bodies::arm(ma, c.point, c.normal), Bodies::arm(mb, c.point, c.normal), 0, 0, 0, 0, c.depth};
         r.k = Bodies::inverse_effective_mass(ma, r.arm_a) + Bodies::inverse_effective_mass(mb, r.arm_b);
         if (!(r.k > 0)) continue;
@@ -268,33 +276,33 @@ struct Collider {
     for (const auto& r : rows) parting[r.hit] &= normal_velocity(r, motion) > setup.resting_speed;
     for (std::size_t hi = 0; hi < d.hits.size(); ++hi)
       correct[hi] = d.hits[hi].sat.depth > 0.5 * tol && (resting_pair[hi] || !parting[hi]);
-    for (auto& [b, mo] : motion) Bodies::store(m, y, static_cast<std::size_t>(b), mo);
-    correct_positions(m, y, rows, motion, correct);
+    for (std::size_t k = 0; k < motion.size(); ++k) Bodies::store(m, y, static_cast<std::size_t>(body_of[k]), motion[k]);
+    correct_positions(m, y, rows, motion, body_of, correct);
   }
 
  private:
   using Motion = typename Bodies::Motion;
-  using Motions = std::map<int, Motion>;
+  using Motions = std::vector<Motion>;
   struct Row {
     int a, b;
+    std::size_t sa, sb;    // the bodies' slots in the response's Motions
     std::size_t hit;       // which pair of the detection
     Vec3 n, ra, rb;        // the normal (a to b); the point from each centre
     typename Bodies::Arm arm_a, arm_b;
     double k, target, lambda, before, depth;  // 1/effective mass, target n·Δv, impulse, n·Δv before, depth
   };
   struct Cached {
-    int a, b;
     Vec3 ra, rb;
     double rate;  // impulse per second
   };
-  mutable std::vector<Cached> cache_;
+  mutable std::map<std::pair<int, int>, std::vector<Cached>> cache_;  // by pair (a, b)
 
   static double normal_velocity(const Row& r, const Motions& of) {
-    return Bodies::normal_velocity(of.at(r.b), r.arm_b, r.n) - Bodies::normal_velocity(of.at(r.a), r.arm_a, r.n);
+    return Bodies::normal_velocity(of[r.sb], r.arm_b, r.n) - Bodies::normal_velocity(of[r.sa], r.arm_a, r.n);
   }
   static void push(const Row& r, Motions& of, double dl) {
-    Bodies::push(of.at(r.b), r.arm_b, r.n, dl);
-    Bodies::push(of.at(r.a), r.arm_a, r.n, -dl);
+    Bodies::push(of[r.sb], r.arm_b, r.n, dl);
+    Bodies::push(of[r.sa], r.arm_a, r.n, -dl);
   }
 
   // Projected Gauss–Seidel with accumulated clamping: each row's total impulse
@@ -331,11 +339,12 @@ struct Collider {
   void warm_start(std::vector<Row>& rows, Motions& motion, double dt) const {
     if (cache_.empty() || !(dt > 0)) return;
     for (auto& r : rows) {
+      const auto pair = cache_.find({r.a, r.b});
+      if (pair == cache_.end()) continue;
       const double near = 1e-2 * std::min(setup.meshes[r.a]->size(), setup.meshes[r.b]->size());
       const Cached* best = nullptr;
       double closest = near;
-      for (const auto& c : cache_) {
-        if (c.a != r.a || c.b != r.b) continue;
+      for (const auto& c : pair->second) {
         const double dist = std::max((c.ra - r.ra).norm(), (c.rb - r.rb).norm());
         if (dist < closest) closest = dist, best = &c;
       }
@@ -349,7 +358,7 @@ struct Collider {
     cache_.clear();
     if (!(dt > 0)) return;
     for (const auto& r : rows)
-      if (r.lambda > 0) cache_.push_back({r.a, r.b, r.ra, r.rb, r.lambda / dt});
+      if (r.lambda > 0) cache_[{r.a, r.b}].push_back({r.ra, r.rb, r.lambda / dt});
   }
 
   // Positional correction by split impulse (pseudo-velocities, as Bullet's
@@ -372,7 +381,7 @@ struct Collider {
   // left a turn of ~1e-6 rad, which a cube balanced on a ridge (an unstable
   // equilibrium growing at 7.7 /s) turned into 1.3e-6 m/s within a second.
   void correct_positions(const Model& m, std::span<double> y, const std::vector<Row>& rows, const Motions& motion,
-                         const std::vector<char>& correct) const {
+                         const std::vector<int>& body_of, const std::vector<char>& correct) const {
     const double tol = setup.settings.penetration_tolerance;
     std::vector<Row> fix;
     if (std::find(correct.begin(), correct.end(), 1) == correct.end()) return;
@@ -381,8 +390,8 @@ struct Collider {
     for (const auto& r : rows) {
       Row p = r;
       if (points[r.hit] >= 3) {  // a face: at the centres, no turn
-        const auto& ma = motion.at(r.a);
-        const auto& mb = motion.at(r.b);
+        const auto& ma = motion[r.sa];
+        const auto& mb = motion[r.sb];
         p.arm_a = Bodies::arm(ma, Bodies::position(ma), r.n);
         p.arm_b = Bodies::arm(mb, Bodies::position(mb), r.n);
         p.k = Bodies::inverse_effective_mass(ma, p.arm_a) + Bodies::inverse_effective_mass(mb, p.arm_b);
@@ -392,11 +401,10 @@ struct Collider {
       fix.push_back(p);
     }
     Motions pseudo;
-    for (const auto& r : fix)
-      for (const int b : {r.a, r.b})
-        if (!pseudo.count(b)) pseudo.emplace(b, Bodies::at_rest(motion.at(b)));
+    pseudo.reserve(motion.size());
+    for (const auto& mo : motion) pseudo.push_back(Bodies::at_rest(mo));
     solve(fix, pseudo, 1e-6 * tol, counters.correction_cap_hits);  // m: a millionth of the tolerance, see above
-    for (const auto& [b, p] : pseudo) Bodies::displace(m, y, static_cast<std::size_t>(b), p);
+    for (std::size_t k = 0; k < pseudo.size(); ++k) Bodies::displace(m, y, static_cast<std::size_t>(body_of[k]), pseudo[k]);
     for (std::size_t hi = 0; hi < correct.size(); ++hi) counters.corrections += correct[hi];
   }
 };
