@@ -62,6 +62,18 @@ std::vector<int> particle_layout(std::size_t particles);
 // The output times: every `every` seconds from 0, and `duration` itself.
 std::vector<double> output_times(const Scene& scene);
 
+// The scene's solver with the backend's physical error norm (core/scene.hpp
+// ErrorNorm). The norm refers to `model`, which must outlive the solver.
+template <Backend B>
+OdeSolver solver_for(const Scene& scene, const typename B::Model& model, std::size_t n) {
+  OdeSolver solver(scene.solver, n, B::velocity_of(model));
+  solver.set_error_norm([&scene, &model](std::span<const double> y0, std::span<const double> y1,
+                                         std::span<const double> err) {
+    return B::error_ratio(model, scene.solver, y0, y1, err);
+  });
+  return solver;
+}
+
 // Which stage a non-finite state came from, found only once a run has failed
 // (no check costs anything while it runs): the failed output interval is
 // replayed from the last sample's state with a fresh solver, checking every
@@ -78,10 +90,7 @@ std::string nonfinite_stage(const Scene& scene, const typename B::Model& model, 
   struct Found {};
   const char* stage = "integrate";
   std::vector<double> y = y0;
-  OdeSolver solver(scene.solver, y.size(), B::velocity_of(model));
-  solver.set_error_norm([&](std::span<const double> a, std::span<const double> b, std::span<const double> err) {
-    return B::error_ratio(model, scene.solver, a, b, err);
-  });
+  OdeSolver solver = solver_for<B>(scene, model, y.size());
   Profile scratch;
   const auto finite = [](std::span<const double> v) {
     return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
@@ -113,10 +122,7 @@ Run simulate(const Scene& scene) {
   const auto model = B::build(scene);
   std::vector<double> y(B::state_size(model));
   B::initial_state(model, y);
-  OdeSolver solver(scene.solver, y.size(), B::velocity_of(model));
-  solver.set_error_norm([&](std::span<const double> y0, std::span<const double> y1, std::span<const double> err) {
-    return B::error_ratio(model, scene.solver, y0, y1, err);
-  });
+  OdeSolver solver = solver_for<B>(scene, model, y.size());
   auto after = [&](std::vector<double>& yy) { return B::after_step(model, yy, run.profile); };
   auto f = [&](double t, std::span<const double> yy, std::span<double> dy) {
     B::derivative(model, t, yy, dy, run.profile);
