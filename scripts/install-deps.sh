@@ -4,6 +4,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git
+  ccache                   # reuses objects across checkouts; the build works without it
   libeigen3-dev            # Eigen 3.4: traditional backend
   libbullet-dev            # Bullet, double precision build (pkg-config bullet-float64)
   libfcl-dev libccd-dev    # FCL 0.7 + libccd: collision referee
