@@ -12,7 +12,7 @@
 namespace gacompare::core {
 
 enum class Stage : int {
-  forces, constraints, integrate, broadphase, narrowphase, time_of_impact, response, referee,
+  forces, constraints, integrate, broadphase, narrowphase, time_of_impact, response,
   mass_properties, bounding_volumes,
   count
 };
