@@ -181,31 +181,25 @@ void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sampl
 // ---- collisions (§2.4–2.5) ----
 
 // The narrowphase takes the rotor's 3×3 matrix: built once per body per query
-// and applied to every vertex (the outermorphism; docs/architecture.md "Fair comparison").
+// and applied to every vertex (the outermorphism; docs/architecture.md "Fair
+// comparison"). The drifted rotor gives an exact rotation through the
+// homogeneous form over R R̃, as the quaternion does (issue #13: one policy).
 collision::Pose RigidBodies::pose(const Model& m, std::span<const double> y, std::size_t b) {
   (void)m;
   const Layout at = layout(b);
   const Rotor3 r = rotor_at(y, at.rot);
-  return {rotation_matrix(r / std::sqrt(norm2(r))), to_eigen(vec_at(y, at.x))};
+  return {rotation_matrix(r), to_eigen(vec_at(y, at.x))};
 }
 
 // The world inverse inertia on bivectors, once per body and response: the
-// rotor's action on the three basis bivectors (three sandwiches) is the
-// orthogonal map S, and I⁻¹_world = S I⁻¹ Sᵀ. A point carried by the body
-// moves with ṙ = r⌋Ω (the commutator of eq. 35: d/dt (R r R̃) = ½(r Ω − Ω r)
-// = r⌋Ω for a vector r and a bivector Ω).
+// rotor's action on bivectors is the orthogonal map S (bivector_rotation_matrix:
+// its coefficients once, not three sandwiches), and I⁻¹_world = S I⁻¹ Sᵀ. A
+// point carried by the body moves with ṙ = r⌋Ω (the commutator of eq. 35:
+// d/dt (R r R̃) = ½(r Ω − Ω r) = r⌋Ω for a vector r and a bivector Ω).
 RigidBodies::Motion RigidBodies::motion(const Model& m, std::span<const double> y, std::size_t b) {
   const Body& body = m.bodies[b];
   const Layout at = layout(b);
-  const Rotor3 r = rotor_at(y, at.rot);
-  const Rotor3 unit = r / std::sqrt(norm2(r));
-  Mat s;
-  for (int k = 0; k < 3; ++k) {
-    Bivector3 e{};
-    e.c[static_cast<std::size_t>(k)] = 1;
-    const Bivector3 turned = sandwich(unit, e);
-    s.col(k) = Eigen::Vector3d(turned.c[0], turned.c[1], turned.c[2]);
-  }
+  const Mat s = bivector_rotation_matrix(rotor_at(y, at.rot));
   Motion out;
   out.x = vec_at(y, at.x);
   out.inv_mass = body.inv_mass;

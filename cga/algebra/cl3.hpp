@@ -58,16 +58,35 @@ inline Eigen::Quaterniond quaternion_from_rotor(const Rotor3& r) {
   return Eigen::Quaterniond(r.c[0], -r.c[3], r.c[2], -r.c[1]);
 }
 
-// The 3×3 matrix of x ↦ R x R̃ (the rotor's outermorphism), built once per body so
-// that many vertices cost a matrix–vector product each (§2.3.2 "calculate once").
+// The 3×3 matrix of x ↦ R x R̃ / (R R̃) (the rotor's outermorphism), built once
+// per body so that many vertices cost a matrix–vector product each (§2.3.2
+// "calculate once"; klein applies its rotors the same way: coefficients once,
+// then applied). The homogeneous form divided by R R̃ is an exact rotation for
+// any non-zero rotor, drifted or not, with one division and no square root:
+// the same policy as the quaternion's (traditional/rigid_body.cpp rotation_of).
 // With R = w + a e12 + b e13 + c e23, the equivalent quaternion is (w, −c, b, −a).
 inline Eigen::Matrix3d rotation_matrix(const Rotor3& r) {
   const double w = r.c[0], x = -r.c[3], y = r.c[2], z = -r.c[1];
+  const double s = 1 / (w * w + x * x + y * y + z * z);
   Eigen::Matrix3d m;
-  m << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),
-       2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
-       2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
-  return m;
+  m << w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y),
+       2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x),
+       2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z;
+  return s * m;
+}
+
+// The same rotation acting on bivector coordinates (e12, e13, e23): B ↦ R B R̃
+// is the rotation of B's dual axial vector (a rotation commutes with the dual),
+// so it is P M P with P the signed permutation of bivector_of_axial (P = P⁻¹).
+inline Eigen::Matrix3d bivector_rotation_matrix(const Rotor3& r) {
+  const Eigen::Matrix3d m = rotation_matrix(r);
+  Eigen::Matrix3d s;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double sign = ((i == 1) != (j == 1)) ? -1.0 : 1.0;
+      s(i, j) = sign * m(2 - i, 2 - j);
+    }
+  return s;
 }
 
 }  // namespace gacompare::cga

@@ -39,6 +39,29 @@ TEST(Cl3, RotorSandwichMatchesQuaternionAndMatrix) {
   }
 }
 
+// A drifted rotor (|R| from 0.5 to 2) still gives an exact rotation: the
+// homogeneous matrix over R R̃ equals the sandwich of R/|R|, and its bivector
+// twin equals the sandwich of each basis bivector (issue #13: one pose policy
+// for quaternion and rotor; the response's S without three sandwiches).
+TEST(Cl3, RotationMatricesOfADriftedRotorMatchTheSandwich) {
+  for (int k = 0; k < 1000; ++k) {
+    const auto unit = rotor_from_quaternion(random_quaternion());
+    const auto r = unit * uniform(0.5, 2.0);
+    const Eigen::Matrix3d m = rotation_matrix(r), s = bivector_rotation_matrix(r);
+    for (int j = 0; j < 3; ++j) {
+      Vector3 e{};
+      e.c[static_cast<std::size_t>(j)] = 1;
+      const Eigen::Vector3d by_sandwich = to_eigen(sandwich(unit, e));
+      ASSERT_LT((m.col(j) - by_sandwich).norm(), 1e-14);
+      Bivector3 b{};
+      b.c[static_cast<std::size_t>(j)] = 1;
+      const Bivector3 turned = sandwich(unit, b);
+      ASSERT_LT((s.col(j) - Eigen::Vector3d(turned.c[0], turned.c[1], turned.c[2])).norm(), 1e-14);
+    }
+    ASSERT_LT((m * m.transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-14);
+  }
+}
+
 TEST(Cl3, RotorProductComposesLikeQuaternions) {
   for (int k = 0; k < 1000; ++k) {
     const auto q1 = random_quaternion(), q2 = random_quaternion();
