@@ -44,10 +44,11 @@ class Body {
   // §2.4.3: X·π = n̂·x − d, > 0 outside (entities.hpp).
   double plane_distance(int k, const Body& other, int j) const { return scalar_product(other.points_[j], planes_[k]); }
   static Vec3 edge_axis(const Vec3& da, const Vec3& db) { return to_eigen(axial(vector3(da) ^ vector3(db))); }
-  // §2.4.4: the segment l0–l1 through triangle k of this body, the triangle
-  // prepared once per body and query (segment_triangle.hpp).
-  std::optional<collision::SegmentHit> segment_through(int k, const Vec3& l0, const Vec3& l1) const {
-    return prepared_.at(*this, k).through(l0, l1);
+  // §2.4.4: the edge i0–i1 of body s through triangle k of this body, the
+  // triangle prepared once per body and query (segment_triangle.hpp), the
+  // edge's ends the conformal points s already holds.
+  std::optional<collision::SegmentHit> segment_through(int k, const Body& s, int i0, int i1) const {
+    return prepared_.at(*this, k).through(s.points_[i0], s.points_[i1]);
   }
 
   // The contact manifold's algebra (core/manifold.hpp): points as conformal

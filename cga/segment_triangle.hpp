@@ -56,7 +56,13 @@ struct PreparedTriangle {
   }
 
   std::optional<collision::SegmentHit> through(const Eigen::Vector3d& l0, const Eigen::Vector3d& l1) const {
-    const ConformalPoint L0 = up(l0), L1 = up(l1);
+    return through(up(l0), up(l1));
+  }
+  // The segment's ends already lifted (a narrowphase Body stores its vertices
+  // as conformal points: issue #13, no second up() per edge and triangle).
+  // up() gives weight 1, so the Euclidean parts are the points themselves.
+  std::optional<collision::SegmentHit> through(const ConformalPoint& L0, const ConformalPoint& L1) const {
+    const Eigen::Vector3d l0 = detail::euclid(L0), l1 = detail::euclid(L1);
     const double alpha = scalar_product(pi, L0), beta = scalar_product(pi, L1);
     if (!(std::abs(alpha - beta) > kSinTol * pi_norm * (l1 - l0).norm())) return std::nullopt;  // parallel
     if ((alpha > 0 && beta > 0) || (alpha < 0 && beta < 0)) return std::nullopt;              // one side

@@ -131,9 +131,8 @@ void edges_through_faces(const Body& a, const Body& b, const Body& s, const Body
   const auto& tedge_planes = t.mesh().edge_planes();
   for (int i = 0; i < static_cast<int>(se.size()); ++i) {
     if (s_depth[se[i][0]].first <= 0 || s_depth[se[i][1]].first <= 0) continue;
-    const Vec3 s0 = s.vertex(se[i][0]), s1 = s.vertex(se[i][1]);
     for (int k = 0; k < static_cast<int>(tris.size()); ++k) {
-      const auto hit = t.segment_through(k, s0, s1);
+      const auto hit = t.segment_through(k, s, se[i][0], se[i][1]);
       if (!hit) continue;
       // The nearest feature edge of the face (polygon) this triangle belongs to.
       int j = -1;

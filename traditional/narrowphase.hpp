@@ -40,10 +40,10 @@ class Body {
   // §2.4.3: n·x − d, > 0 outside.
   double plane_distance(int k, const Body& other, int j) const { return planes_[k].distance(other.vertices_[j]); }
   static Vec3 edge_axis(const Vec3& da, const Vec3& db) { return da.cross(db); }
-  // §2.4.4: the segment l0–l1 through triangle k of this body, the triangle
-  // prepared once per body and query (segment_triangle.hpp).
-  std::optional<collision::SegmentHit> segment_through(int k, const Vec3& l0, const Vec3& l1) const {
-    return prepared_.at(*this, k).through(l0, l1);
+  // §2.4.4: the edge i0–i1 of body s through triangle k of this body, the
+  // triangle prepared once per body and query (segment_triangle.hpp).
+  std::optional<collision::SegmentHit> segment_through(int k, const Body& s, int i0, int i1) const {
+    return prepared_.at(*this, k).through(s.vertices_[i0], s.vertices_[i1]);
   }
 
   // The contact manifold's algebra (core/manifold.hpp): points as 3-vectors,
