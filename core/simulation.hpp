@@ -29,10 +29,17 @@ struct Simulation {
     std::optional<Contacts> collisions;  // only when the scene lists the effect
     double bounding_seconds = 0;         // building the bounding spheres, once
     double mass_seconds = 0;             // the bodies' exact mass properties, once
+    // Per-effect counters (issue #13): each listed force effect with the
+    // particles and moving bodies (applied forces: the forces) it acts on;
+    // every force evaluation evaluates exactly these terms and no others, so
+    // `effect_<type>_terms` = evaluations × targets. An effect the scene does
+    // not list has no entry and no counter: nothing evaluates it.
+    std::vector<std::pair<std::string, std::uint64_t>> effect_targets;
+    mutable std::uint64_t force_evaluations = 0;
   };
 
   static Model build(const Scene& scene) {
-    Model m{Particles::build(scene), {}, {}, 0, std::nullopt, 0, 0};
+    Model m{Particles::build(scene), {}, {}, 0, std::nullopt, 0, 0, effect_targets(scene), 0};
     if (!scene.bodies.empty()) {
       Profile once;
       {
@@ -49,6 +56,27 @@ struct Simulation {
       m.bounding_seconds = once[Stage::bounding_volumes].seconds;
     }
     return m;
+  }
+
+  // The terms a force evaluation computes for each listed effect: every
+  // particle (pinned ones too: their force is computed, their acceleration
+  // zeroed), every moving body (static bodies are skipped), every pair of
+  // particles for the mutual attraction, every applied force.
+  static std::vector<std::pair<std::string, std::uint64_t>> effect_targets(const Scene& scene) {
+    std::uint64_t moving = 0;
+    for (const auto& b : scene.bodies) moving += b.is_static ? 0 : 1;
+    const std::uint64_t particles = scene.particles.size();
+    std::vector<std::pair<std::string, std::uint64_t>> out;
+    for (const auto& e : scene.effects) {
+      const std::string name(effect_name(e));
+      if (std::holds_alternative<Collisions>(e)) continue;  // counted by the collision pipeline
+      if (const auto* f = std::get_if<AppliedForces>(&e)) out.emplace_back(name, f->forces.size());
+      else if (std::holds_alternative<AttractionBetweenParticles>(e))
+        out.emplace_back(name, particles * (particles > 0 ? particles - 1 : 0) / 2);
+      else if (std::holds_alternative<AttractionToPoint>(e)) out.emplace_back(name, particles);
+      else out.emplace_back(name, particles + moving);  // gravity and the drags act on both
+    }
+    return out;
   }
 
   // Integrates from t to t_end: straight through without collisions, else in
@@ -175,6 +203,7 @@ struct Simulation {
   }
   static void derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
                          Profile& profile) {
+    ++m.force_evaluations;
     if (m.offset > 0) Particles::derivative(m.particles, t, y.first(m.offset), dydt.first(m.offset), profile);
     if (!m.bodies.bodies.empty()) {
       ScopedStage timed(profile, Stage::forces);
@@ -200,6 +229,8 @@ struct Simulation {
   static std::map<std::string, std::uint64_t> counters(const Model& m) {
     auto out = Particles::counters(m.particles);
     if (m.collisions) m.collisions->counters.add_to(out);
+    for (const auto& [name, targets] : m.effect_targets)
+      if (targets > 0) out["effect_" + name + "_terms"] += m.force_evaluations * targets;
     return out;
   }
   static std::map<std::string, double> metrics(const Model& m) {

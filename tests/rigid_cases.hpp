@@ -59,6 +59,11 @@ TYPED_TEST_P(RigidCases, FreeFlightFollowsTheParabolaAndKeepsItsSpin) {
     EXPECT_LT((L - L0).norm(), 1e-8 * L0.norm()) << "t=" << s.t;
     EXPECT_NEAR(s.kinetic + s.potential, e0, 1e-8 * std::abs(e0)) << "t=" << s.t;
   }
+  // Only the listed effect is evaluated (issue #13): gravity once per force
+  // evaluation for the one body, no drag or applied-force term at all.
+  EXPECT_EQ(run.counters.at("effect_gravity_terms"), run.solver.derivative_evaluations);
+  for (const char* absent : {"effect_linear_drag_terms", "effect_quadratic_drag_terms", "effect_applied_forces_terms"})
+    EXPECT_EQ(run.counters.count(absent), 0u) << absent;
 }
 
 // Dzhanibekov: spin about the intermediate axis with a small perturbation; the
