@@ -125,6 +125,74 @@ json cell(const std::string& backend, const core::Scene& scene, const core::Run&
   return c;
 }
 
+// One cell of the report: a backend at one setting of one solver.
+struct Row {
+  std::string solver, backend, setting, failure;
+  StateErrors final, rms;  // NaN: not measured (a failed cell, or a body measure of a scene without bodies)
+  double error = INFINITY, time = 0;  // the diagram's measure at the end
+  Spread secs;
+  std::uint64_t steps = 0, evals = 0;
+};
+
+// Time at equal accuracy (issue #13): equal tolerance is not equal accuracy,
+// so per solver each backend's time and steps are read off its own cells at
+// common error levels — every decade inside the range all the solver's
+// backends reach — and compared with the traditional backend's at that level.
+template <class Usable>
+void write_equal_accuracy(std::ostringstream& md, const std::vector<Row>& rows, Usable usable, Measure x) {
+  std::vector<std::string> solvers, backends;
+  for (const auto& r : rows) {
+    if (std::find(solvers.begin(), solvers.end(), r.solver) == solvers.end()) solvers.push_back(r.solver);
+    if (std::find(backends.begin(), backends.end(), r.backend) == backends.end()) backends.push_back(r.backend);
+  }
+  std::ostringstream table;
+  int lines = 0;
+  for (const auto& solver : solvers) {
+    if (solver == "odeint_cash_karp54") continue;  // the peer has one backend: nothing to compare at equal error
+    std::vector<std::pair<std::string, std::vector<EqualAccuracyPoint>>> lines_of;
+    double lo = 0, hi = INFINITY;
+    for (const auto& b : backends) {
+      std::vector<EqualAccuracyPoint> cells;
+      for (const auto& r : rows)
+        if (r.solver == solver && r.backend == b && usable(r))
+          cells.push_back({r.error, r.time, static_cast<double>(r.steps)});
+      if (cells.empty()) continue;
+      double mn = INFINITY, mx = 0;
+      for (const auto& c : cells) mn = std::min(mn, c.error), mx = std::max(mx, c.error);
+      lo = std::max(lo, mn), hi = std::min(hi, mx);
+      lines_of.emplace_back(b, std::move(cells));
+    }
+    if (lines_of.size() < 2 || !(lo > 0) || !(lo <= hi)) continue;
+    for (int e = static_cast<int>(std::floor(std::log10(hi))); e >= static_cast<int>(std::ceil(std::log10(lo))); --e) {
+      const double level = std::pow(10.0, e);
+      std::optional<EqualAccuracyPoint> base;
+      for (const auto& [b, cells] : lines_of)
+        if (b == "traditional") base = cost_at_error(cells, level);
+      for (const auto& [b, cells] : lines_of) {
+        const auto at = cost_at_error(cells, level);
+        if (!at) continue;
+        table << "| " << solver << " | " << format_number("%.0e", level) << " | " << b << " | "
+              << format_number("%.3g", 1e3 * at->time) << " ms | " << format_number("%.0f", at->steps) << " | "
+              << (base ? format_number("%.2f", at->time / base->time) : "–") << " | "
+              << (base ? format_number("%.2f", at->steps / base->steps) : "–") << " |\n";
+        ++lines;
+      }
+    }
+  }
+  md << "\n## Time at equal accuracy\n\n";
+  if (lines == 0) {
+    md << "No error level is reached by two backends of one solver inside both their ranges: nothing to compare.\n";
+    return;
+  }
+  md << "Each backend's median time and steps to reach a " << measure_words(x) << " error E at the end, read off its "
+     << "own cells above (the cells that are faster than every more accurate one, interpolated in log error – log "
+     << "time; never extrapolated), at every decade E inside the range all the solver's backends reach. Ratios are "
+     << "to the traditional backend at the same E: **the settings differ per backend**, the accuracy does not.\n\n"
+     << "| method | E (" << measure_unit(x) << ") | backend | time at E | steps at E | time / traditional | steps / traditional |\n"
+     << "|---|---:|---|---:|---:|---:|---:|\n"
+     << table.str();
+}
+
 bool projection(const core::Scene& s) { return s.constraint_solver.drift == core::Drift::projection && !s.constraints.empty(); }
 }  // namespace
 
@@ -178,25 +246,41 @@ json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& ref, 
     for (int r = 0; r < spec.repeats; ++r) run = odeint_run(s, unit.spec.abs_tol, secs);
     cells.push_back(cell("traditional", s, run, ref, secs));
   } else {
-    std::vector<double> warm, st, sc;
+    // Every variant in turn, the order rotated each repeat so drift hits them
+    // alike: both backends, and for a scene of bodies the traditional backend
+    // with its other rotation representation too (matrix, quaternion and rotor
+    // in one diagram, issue #13).
+    struct Variant {
+      std::string label;
+      core::Scene scene;
+      bool cga;
+      std::vector<double> secs;
+      core::Run run;
+    };
+    std::vector<Variant> variants = {{"traditional", s, false, {}, {}}, {"cga", s, true, {}, {}}};
+    if (!s.bodies.empty()) {
+      core::Scene other = s;
+      other.rigid_body.rotation =
+          s.rigid_body.rotation == core::Rotation::matrix ? core::Rotation::quaternion : core::Rotation::matrix;
+      variants.insert(variants.begin() + 1,
+                      {std::string("traditional-") + (other.rigid_body.rotation == core::Rotation::matrix ? "matrix" : "quaternion"),
+                       other, false, {}, {}});
+    }
+    auto run_one = [](Variant& v, std::vector<double>& secs) {
+      return v.cga ? timed<cga::Backend>(v.scene, secs) : timed<traditional::Backend>(v.scene, secs);
+    };
     try {
-      timed<traditional::Backend>(s, warm);
-      timed<cga::Backend>(s, warm);
-      core::Run rt, rc;
-      for (int r = 0; r < spec.repeats; ++r) {  // interleaved, alternating who goes first
-        if (r % 2 == 0) {
-          rt = timed<traditional::Backend>(s, st);
-          rc = timed<cga::Backend>(s, sc);
-        } else {
-          rc = timed<cga::Backend>(s, sc);
-          rt = timed<traditional::Backend>(s, st);
+      std::vector<double> warm;
+      for (auto& v : variants) run_one(v, warm);
+      for (int r = 0; r < spec.repeats; ++r)
+        for (std::size_t k = 0; k < variants.size(); ++k) {
+          Variant& v = variants[(k + static_cast<std::size_t>(r)) % variants.size()];
+          v.run = run_one(v, v.secs);
         }
-      }
-      cells.push_back(cell("traditional", s, rt, ref, st));
-      cells.push_back(cell("cga", s, rc, ref, sc));
+      for (const auto& v : variants) cells.push_back(cell(v.label, v.scene, v.run, ref, v.secs));
     } catch (const Error& e) {  // a setting this scene refuses (a split solver with bodies)
-      for (const char* b : {"traditional", "cga"})
-        cells.push_back({{"backend", b}, {"errors", json::object()}, {"seconds", json::array()},
+      for (const auto& v : variants)
+        cells.push_back({{"backend", v.label}, {"errors", json::object()}, {"seconds", json::array()},
                          {"steps", 0}, {"derivative_evaluations", 0}, {"failure", e.what()}});
     }
   }
@@ -217,6 +301,26 @@ Measure default_error(const core::Scene& scene) {
   return !scene.bodies.empty() && scene.particles.empty() ? Measure::orientation : Measure::position;
 }
 
+std::optional<EqualAccuracyPoint> cost_at_error(std::vector<EqualAccuracyPoint> cells, double error) {
+  std::erase_if(cells, [](const EqualAccuracyPoint& c) { return !(c.error > 0 && c.time > 0 && c.steps > 0); });
+  std::sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.time < b.time; });
+  std::vector<EqualAccuracyPoint> front;
+  for (const auto& c : cells)
+    if (front.empty() || c.error < front.back().error) front.push_back(c);
+  if (front.empty() || !(error > 0)) return std::nullopt;
+  // front: time rising, error falling.
+  if (error > front.front().error || error < front.back().error) return std::nullopt;
+  for (std::size_t k = 0; k + 1 < front.size(); ++k) {
+    const auto &a = front[k], &b = front[k + 1];
+    if (error <= a.error && error >= b.error) {
+      const double w = std::log(a.error / error) / std::log(a.error / b.error);
+      return EqualAccuracyPoint{error, std::exp(std::log(a.time) + w * std::log(b.time / a.time)),
+                                std::exp(std::log(a.steps) + w * std::log(b.steps / a.steps))};
+    }
+  }
+  return front.front();  // a front of one cell, asked at exactly its error
+}
+
 bool cell_is_current(const nlohmann::json& record, const std::string& scene_sha256) {
   return record.value("format", 1) == kSweepCellFormat && record.value("scene_sha256", "") == scene_sha256;
 }
@@ -226,13 +330,6 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
   const Measure x = spec.error.value_or(default_error(scene));
   const auto measures = measures_of(scene);
   const std::string unit(measure_unit(x)), words(measure_words(x));
-  struct Row {
-    std::string solver, backend, setting, failure;
-    StateErrors final, rms;  // NaN: not measured (a failed cell, or a body measure of a scene without bodies)
-    double error = INFINITY, time = 0;  // the diagram's measure at the end
-    Spread secs;
-    std::uint64_t steps = 0, evals = 0;
-  };
   std::vector<Row> rows;
   double nothing = INFINITY;
   for (const auto& u : units) {
@@ -314,6 +411,7 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
     csv << "," << format_number("%.9g", r.time) << "," << format_number("%.9g", r.secs.min) << "," << format_number("%.9g", r.secs.max) << ","
         << r.steps << "," << r.evals << "," << failure << "\n";
   }
+  write_equal_accuracy(md, rows, usable, x);
   if (std::none_of(rows.begin(), rows.end(), usable))
     md << "\nNo cell has a " << words << " error above 0 and below the error of not simulating at all ("
        << format_number("%.2e", nothing) << " " << unit << "): there is no diagram to draw.\n";

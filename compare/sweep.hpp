@@ -55,8 +55,9 @@ std::string format_number(const char* printf_format, double x);
 Measure default_error(const core::Scene& scene);
 
 // A unit's record is reused by a resumed sweep or a merge only when it was
-// written by this format (older ones measured position alone) for this scene.
-inline constexpr int kSweepCellFormat = 2;
+// written by this format (1 measured position alone; 2 had no traditional
+// cell with the other rotation representation) for this scene.
+inline constexpr int kSweepCellFormat = 3;
 bool cell_is_current(const nlohmann::json& record, const std::string& scene_sha256);
 
 struct Unit {
@@ -75,7 +76,10 @@ core::Scene swept_scene(const core::Scene& scene, const SweepSpec& spec);
 // The reference run (traditional, cash_karp45 at 1e-13). Throws run_error if it fails.
 core::Run sweep_reference(const core::Scene& swept);
 
-// Runs one unit (both backends, or the peer) against the reference and returns
+// Runs one unit (both backends — for a scene of bodies also the traditional
+// backend with its other rotation representation, labelled
+// "traditional-quaternion" or "traditional-matrix" — or the peer) against the
+// reference and returns
 // its record: {"format", "unit", "solver", "setting", "scene_sha256", "error_of_nothing": {measure: value},
 // "cells": [{"backend", "errors": {measure: {"final", "rms"}}, "seconds", "steps", ...}]}
 // (an error is null where the run failed; a measure the scene has no object for is absent).
@@ -84,6 +88,16 @@ nlohmann::ordered_json run_unit(const Unit& unit, const core::Scene& swept, cons
 
 // Writes sweep.md, sweep.csv, <scene>_work_precision.svg and sweep.html (the table
 // and the diagram on one page) into `dir` from the units' records (in unit order).
+// sweep.md ends with the time at equal accuracy: per solver, each backend's
+// time and steps interpolated at common error levels (equal_accuracy below).
+struct EqualAccuracyPoint {
+  double error = 0, time = 0, steps = 0;
+};
+// A backend's cost of reaching error E along one solver's cells: the cells'
+// lower envelope (sorted by time, each kept only when more accurate than every
+// faster one) interpolated linearly in log error – log time (and log steps).
+// nullopt outside the envelope's range of errors: never extrapolated.
+std::optional<EqualAccuracyPoint> cost_at_error(std::vector<EqualAccuracyPoint> cells, double error);
 void write_sweep_report(const std::filesystem::path& dir, const core::Scene& scene,
                         const std::vector<nlohmann::json>& units, const SweepSpec& spec);
 
