@@ -360,7 +360,8 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
   auto pareto = [&](const Row& r) {
     if (!usable(r)) return false;
     for (const auto& o : rows)
-      if (&o != &r && usable(o) && o.error < r.error && o.time < r.time) return false;
+      if (&o != &r && usable(o) && o.error <= r.error && o.time <= r.time && (o.error < r.error || o.time < r.time))
+        return false;  // dominated (two variants with the same error: only the faster is on the front)
     return true;
   };
 
