@@ -168,10 +168,18 @@ struct Collider {
     {
       ScopedStage timed(profile, Stage::broadphase);
       pose = poses(m, y);
+      // The spheres in a frame at the bodies' mean position (issue #16: a
+      // conformal sphere stores ½|c|² beside c, so world coordinates 1e5 m
+      // from the origin cost the cga overlap test 10 digits and it missed the
+      // pair; the narrowphase works per pair about its own local origin).
+      // Overlap does not depend on the frame, so the pairs are the same.
+      Vec3 frame = Vec3::Zero();
+      for (std::size_t b = 0; b < n; ++b) frame += pose[b].position;
+      if (n > 0) frame /= static_cast<double>(n);
       std::vector<typename Spheres::Sphere> spheres;
       spheres.reserve(n);
       for (std::size_t b = 0; b < n; ++b)
-        spheres.push_back(Spheres::sphere(pose[b].apply(setup.sphere_centre[b]), setup.sphere_radius[b]));
+        spheres.push_back(Spheres::sphere(pose[b].apply(setup.sphere_centre[b]) - frame, setup.sphere_radius[b]));
       pairs = sort_and_sweep<Spheres>(std::span<const typename Spheres::Sphere>(spheres));
       counters.broadphase_candidates += static_cast<std::uint64_t>(pairs.counters.candidates);
     }
