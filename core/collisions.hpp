@@ -9,7 +9,7 @@
 // One collision step from an accepted state (t0, y0), §2.5.1's double buffer:
 //   1. integrate to t1 = t0 + h (h ≤ the effect's `step`, shorter where a body
 //      could move more than half the smallest inradius: no tunnelling);
-//   2. broadphase (sort and sweep over bounding spheres) and narrowphase at t1:
+//   2. broadphase (over bounding spheres, core/broadphase.hpp) and narrowphase at t1:
 //      the separating-axis depth, and for pairs in contact the contact
 //      manifold (method "manifold", core/manifold.hpp) or the report's
 //      detector (method "report", fig. 7);
@@ -83,6 +83,7 @@ inline constexpr int kMaxImpactIterations = 60;  // time-of-impact trials per se
 
 struct CollisionCounters {
   std::uint64_t steps = 0, shortened_steps = 0, broadphase_candidates = 0, narrowphase_pairs = 0;
+  std::uint64_t broadphase_tree_updates = 0, broadphase_pairs_kept = 0;  // summed over detections
   std::uint64_t impact_searches = 0, impact_iterations = 0, impact_evaluations = 0, unresolved_searches = 0;
   std::uint64_t contacts = 0, impulses = 0, resting_contacts = 0, sweeps = 0, corrections = 0;
   std::uint64_t warm_started = 0, sweep_cap_hits = 0, correction_cap_hits = 0, unresolved_impacts = 0;
@@ -123,10 +124,12 @@ struct Collider {
   using Model = typename Bodies::Model;
   CollisionSetup setup;
   mutable CollisionCounters counters;
+  mutable Broadphase<Spheres> broadphase_;  // its trees and pairs persist between detections
 
   static Collider build(const Scene& scene, const Model& m, Profile& profile) {
     Collider c;
     c.setup = collision_setup(scene);
+    c.broadphase_ = Broadphase<Spheres>(c.setup.settings.broadphase);
     {
       ScopedStage timed(profile, Stage::bounding_volumes);
       std::mt19937_64 rng(1);  // Welzl's shuffle: fixed, so runs repeat exactly
@@ -168,20 +171,13 @@ struct Collider {
     {
       ScopedStage timed(profile, Stage::broadphase);
       pose = poses(m, y);
-      // The spheres in a frame at the bodies' mean position (issue #16: a
-      // conformal sphere stores ½|c|² beside c, so world coordinates 1e5 m
-      // from the origin cost the cga overlap test 10 digits and it missed the
-      // pair; the narrowphase works per pair about its own local origin).
-      // Overlap does not depend on the frame, so the pairs are the same.
-      Vec3 frame = Vec3::Zero();
-      for (std::size_t b = 0; b < n; ++b) frame += pose[b].position;
-      if (n > 0) frame /= static_cast<double>(n);
-      std::vector<typename Spheres::Sphere> spheres;
-      spheres.reserve(n);
-      for (std::size_t b = 0; b < n; ++b)
-        spheres.push_back(Spheres::sphere(pose[b].apply(setup.sphere_centre[b]) - frame, setup.sphere_radius[b]));
-      pairs = sort_and_sweep<Spheres>(std::span<const typename Spheres::Sphere>(spheres));
+      // The method and the frame the spheres are held in: core/broadphase.hpp.
+      std::vector<Vec3> centres(n);
+      for (std::size_t b = 0; b < n; ++b) centres[b] = pose[b].apply(setup.sphere_centre[b]);
+      pairs = broadphase_.find(centres, setup.sphere_radius, setup.is_static);
       counters.broadphase_candidates += static_cast<std::uint64_t>(pairs.counters.candidates);
+      counters.broadphase_tree_updates += static_cast<std::uint64_t>(pairs.counters.tree_updates);
+      counters.broadphase_pairs_kept += static_cast<std::uint64_t>(pairs.counters.pairs_kept);
     }
     ScopedStage timed(profile, Stage::narrowphase);
     const auto method = setup.settings.method == ContactMethod::report ? collision::Method::sat_then_report

@@ -518,7 +518,8 @@ class Loader {
       });
       return a;
     }
-    static constexpr Keys<6> keys = {"type", "restitution", "penetration_tolerance", "step", "time_of_impact", "method"};
+    static constexpr Keys<7> keys = {"type", "restitution", "penetration_tolerance", "step", "time_of_impact", "method",
+                                     "broadphase"};
     Obj o(v, keys);
     Collisions c;
     if (auto x = o.opt("method")) {
@@ -533,6 +534,13 @@ class Loader {
       if (m == "bisection") c.time_of_impact = TimeOfImpact::bisection;
       else if (m == "illinois") c.time_of_impact = TimeOfImpact::illinois;
       else x->expected("\"bisection\" or \"illinois\"");
+    }
+    if (auto x = o.opt("broadphase")) {
+      const std::string m = str(*x);
+      if (m == "sweep") c.broadphase = BroadphaseMethod::sweep;
+      else if (m == "aabb_tree") c.broadphase = BroadphaseMethod::aabb_tree;
+      else if (m == "sphere_tree") c.broadphase = BroadphaseMethod::sphere_tree;
+      else x->expected("\"sweep\", \"aabb_tree\" or \"sphere_tree\"");
     }
     if (auto x = o.opt("restitution")) c.restitution = number(*x, Range::unit);
     if (auto x = o.opt("penetration_tolerance")) c.penetration_tolerance = number(*x, Range::positive);

@@ -60,14 +60,20 @@ struct AttractionToPoint { Vec3 point{0, 0, 0}; double D = 0; double softening =
 //     incident face along the axis of minimum penetration, core/manifold.hpp)
 //     or "report" (fig. 7's vertex-in-body and edge-through-face detector,
 //     which misses faces meeting faces: kept to compare with).
+//   broadphase: which pairs get the narrowphase, all methods giving the same
+//     pairs (core/broadphase.hpp): "sweep" (sort and sweep on one axis),
+//     "aabb_tree" (a dynamic tree of boxes with persistent pairs) or
+//     "sphere_tree" (the same tree over the backend's spheres, §4.2.2).
 enum class TimeOfImpact { bisection, illinois };
 enum class ContactMethod { manifold, report };
+enum class BroadphaseMethod { sweep, aabb_tree, sphere_tree };
 struct Collisions {
   double restitution = 0.5;
   double penetration_tolerance = 1e-4;
   double step = 1e-3;
   TimeOfImpact time_of_impact = TimeOfImpact::bisection;
   ContactMethod method = ContactMethod::manifold;
+  BroadphaseMethod broadphase = BroadphaseMethod::sweep;
 };
 // Forces applied at points of bodies (§2.3.1: L̇ = τ): each pushes body `body` at
 // `point` (body coordinates, from the centre of mass) with `force` (world, N)

@@ -1,0 +1,200 @@
+#pragma once
+// The broadphase by dynamic trees (issue #14 item 2): persistent pairs over
+// fat volumes, one tree for the moving bodies and one for the static ones,
+// over either volume policy:
+//   AabbVolume           algebra-neutral boxes (core::Aabb) around each body's
+//                        bounding sphere: the practical baseline;
+//   SphereVolume<Ops>    the report's sphere trees (§4.2.2, fig. 13): leaves
+//                        are the bodies' bounding spheres, parents enclosing
+//                        spheres, in the backend's algebra (centre and radius;
+//                        conformal dual spheres whose enclosing sphere, cost
+//                        and overlap are inner products, cga/bounding_volume.hpp).
+// §4.2.2 builds a sphere tree per body to approximate its shape; here the
+// tree is over the scene's bodies, one sphere each, the use the report's
+// broadphase needs (its §2.4.1 spheres, organised as §4.2.2 suggests).
+//
+// Each detection (update):
+//   1. every body's tight volume (its bounding sphere, or the box around it) is
+//      checked against the fat volume its leaf holds (the tight one grown by
+//      kFatMargin of its radius); only a body that left it is reinserted;
+//   2. the pairs of reinserted bodies are dropped and found again by querying
+//      the trees with their new fat volumes (a moving body: both trees; a
+//      static one: the moving tree only, so two static bodies are never a
+//      pair). A pair of two bodies that stayed is kept: their fat volumes have
+//      not changed, so neither has their overlap. A still scene reinserts
+//      nothing and queries nothing;
+//   3. every kept pair gets the backend's exact sphere test
+//      (Ops::overlap on the tight spheres), and the survivors, sorted, are the
+//      answer: the same pairs as sort and sweep's and all pairs' (tested).
+// Why the answer is exact although tree volumes are rounded: a pair whose tight
+// spheres pass Ops::overlap has fat volumes overlapping by at least the two
+// margins (2·kFatMargin of the smaller radius), far more than the rounding of
+// any merge, containment or overlap test (~1e-16 of the coordinates' squares
+// over the radius; see core/broadphase.hpp for the frame that keeps
+// coordinates small), so no rounded test on the way down can lose it. The
+// margin only adds kept pairs, which the exact test removes.
+#include "core/bounding_volume.hpp"
+#include "core/dynamic_tree.hpp"
+
+#include <algorithm>
+#include <concepts>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace gacompare::core {
+
+// How much larger than a body's bounding sphere its leaf is, relative to its
+// radius. Larger: fewer reinsertions, more kept pairs to test. Box2D v3 uses
+// 0.1 m for bodies of about a metre; measured here (bench/broadphase_bench.cpp,
+// README), 0.1 of the radius costs the least in a box of bodies thrown about.
+inline constexpr double kFatMargin = 0.1;
+
+// What a sphere tree needs of a backend beyond the BoundingSphereOps: the node
+// operations of traditional/bounding_volume.hpp and cga/bounding_volume.hpp.
+template <class Ops>
+concept SphereTreeOps = BoundingSphereOps<Ops> && requires(const typename Ops::Sphere& s, double t) {
+  { Ops::enclosing(s, s) } -> std::convertible_to<typename Ops::Sphere>;
+  { Ops::encloses(s, s) } -> std::convertible_to<bool>;
+  { Ops::grown(s, t) } -> std::convertible_to<typename Ops::Sphere>;
+  { Ops::radius_squared(s) } -> std::convertible_to<double>;
+};
+
+// Boxes around the bounding spheres; the cost is half the surface area.
+struct AabbVolume {
+  using Volume = Aabb;
+  static Aabb merge(const Aabb& a, const Aabb& b) { return {a.min.cwiseMin(b.min), a.max.cwiseMax(b.max)}; }
+  static double cost(const Aabb& a) {
+    const Vec3 e = a.max - a.min;
+    return e.x() * e.y() + e.y() * e.z() + e.z() * e.x();
+  }
+  static bool overlap(const Aabb& a, const Aabb& b) { return core::overlap(a, b); }
+  static bool contains(const Aabb& outer, const Aabb& inner) {
+    return (outer.min.array() <= inner.min.array()).all() && (inner.max.array() <= outer.max.array()).all();
+  }
+  template <class Sphere>
+  static Aabb bound(const Vec3& centre, double radius, const Sphere&) {
+    return {centre.array() - radius, centre.array() + radius};
+  }
+  static Aabb grown(const Aabb& a, double by) { return {a.min.array() - by, a.max.array() + by}; }
+};
+
+// The backend's spheres themselves; the cost is ρ².
+template <SphereTreeOps Ops>
+struct SphereVolume {
+  using Volume = typename Ops::Sphere;
+  static Volume merge(const Volume& a, const Volume& b) { return Ops::enclosing(a, b); }
+  static double cost(const Volume& a) { return Ops::radius_squared(a); }
+  static bool overlap(const Volume& a, const Volume& b) { return Ops::overlap(a, b); }
+  static bool contains(const Volume& outer, const Volume& inner) { return Ops::encloses(outer, inner); }
+  static const Volume& bound(const Vec3&, double, const Volume& sphere) { return sphere; }
+  static Volume grown(const Volume& s, double by) { return Ops::grown(s, by); }
+};
+
+// The work of one update, for the counters.
+struct TreeWork {
+  std::int64_t volume_tests = 0;  // tree nodes tested by the queries
+  std::int64_t exact_tests = 0;   // kept pairs given Ops::overlap
+  std::int64_t reinserted = 0;    // leaves (re)inserted
+  std::int64_t kept = 0;          // pairs kept after the update
+};
+
+template <class V, BoundingSphereOps Ops>
+class TreeBroadphase {
+ public:
+  using Sphere = typename Ops::Sphere;
+
+  // Forgets everything: the next update inserts every body afresh.
+  void clear() {
+    moving_.clear(), fixed_.clear();
+    leaf_.clear(), partners_.clear(), is_static_.clear();
+  }
+
+  // spheres[i]: body i's bounding sphere in the frame (Ops::sphere(centres[i],
+  // radii[i])); the overlapping pairs (i < j, sorted) are appended to `pairs`.
+  TreeWork update(std::span<const Sphere> spheres, std::span<const Vec3> centres, std::span<const double> radii,
+                  const std::vector<bool>& is_static, std::vector<std::pair<int, int>>& pairs) {
+    const std::size_t n = spheres.size();
+    if (leaf_.size() != n || is_static_ != is_static) {
+      clear();
+      leaf_.assign(n, kNull);
+      partners_.assign(n, {});
+      is_static_ = is_static;
+    }
+    TreeWork work;
+    moved_.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto tight = V::bound(centres[i], radii[i], spheres[i]);
+      Tree& tree = tree_of(i);
+      if (leaf_[i] != kNull && V::contains(tree.volume(leaf_[i]), tight)) continue;
+      if (leaf_[i] != kNull) tree.remove(leaf_[i]);
+      leaf_[i] = tree.insert(V::grown(tight, kFatMargin * radii[i]), static_cast<int>(i));
+      moved_.push_back(static_cast<int>(i));
+    }
+    work.reinserted = static_cast<std::int64_t>(moved_.size());
+    find_pairs_of_moved();
+    for (std::size_t i = 0; i < n; ++i)
+      for (const int j : partners_[i]) {
+        if (j < static_cast<int>(i)) continue;
+        ++work.exact_tests;
+        work.kept += 1;
+        if (Ops::overlap(spheres[i], spheres[static_cast<std::size_t>(j)])) pairs.emplace_back(static_cast<int>(i), j);
+      }
+    std::sort(pairs.begin(), pairs.end());
+    work.volume_tests = moving_.take_volume_tests() + fixed_.take_volume_tests();
+    return work;
+  }
+
+  const DynamicTree<V>& moving_tree() const { return moving_; }
+  const DynamicTree<V>& static_tree() const { return fixed_; }
+
+ private:
+  using Tree = DynamicTree<V>;
+  static constexpr int kNull = Tree::kNull;
+  Tree moving_, fixed_;
+  std::vector<int> leaf_;                  // body → its leaf in its tree
+  std::vector<std::vector<int>> partners_;  // body → the bodies it is paired with (both ways)
+  std::vector<bool> is_static_;
+  std::vector<int> moved_;
+  std::vector<char> state_;  // per body during find_pairs_of_moved: 0 stayed, 1 moved, 2 queried
+
+  Tree& tree_of(std::size_t i) { return is_static_[i] ? fixed_ : moving_; }
+
+  static void unlink(std::vector<int>& list, int j) {
+    const auto it = std::find(list.begin(), list.end(), j);
+    if (it != list.end()) *it = list.back(), list.pop_back();
+  }
+
+  // Drops every pair of a moved body and finds them again from its new fat
+  // volume. A pair of two moved bodies may be found from either side (a
+  // query descends by rounded tests, so not necessarily from both): it is
+  // added by the first query that finds it and recognised by the second.
+  void find_pairs_of_moved() {
+    state_.assign(leaf_.size(), 0);
+    for (const int i : moved_) state_[static_cast<std::size_t>(i)] = 1;
+    for (const int i : moved_) {
+      auto& mine = partners_[static_cast<std::size_t>(i)];
+      for (const int j : mine)
+        if (state_[static_cast<std::size_t>(j)] == 0) unlink(partners_[static_cast<std::size_t>(j)], i);
+      mine.clear();
+    }
+    for (const int i : moved_) {
+      const auto ui = static_cast<std::size_t>(i);
+      const auto add = [&](int j) {
+        const auto uj = static_cast<std::size_t>(j);
+        if (j == i) return;
+        auto& mine = partners_[ui];
+        if (state_[uj] == 2 && std::find(mine.begin(), mine.end(), j) != mine.end()) return;
+        mine.push_back(j);
+        partners_[uj].push_back(i);
+      };
+      const auto& fat = tree_of(ui).volume(leaf_[ui]);
+      moving_.query(fat, add);
+      if (!is_static_[ui]) fixed_.query(fat, add);
+      state_[ui] = 2;
+    }
+  }
+};
+
+}  // namespace gacompare::core
