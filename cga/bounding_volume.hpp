@@ -98,6 +98,9 @@ struct SphereOps {
   }
   // The outer ball holds the inner one: d ≤ ρo − ρi ⟺ So·Si ≥ ρo ρi (with
   // ρo ≥ ρi, by S1·S2 above); squared, three inner products and no root.
+  // The sign is that of ½((ρo − ρi)² − d²), read off numbers of size ρ², so
+  // nearly equal concentric spheres are told apart only to a room of
+  // ~√ε·ρ (the twin: ~ε·ρ); the trees test rooms of kFatMargin·ρ.
   static bool encloses(const Sphere& outer, const Sphere& inner) {
     const double qo = scalar_product(outer, outer), qi = scalar_product(inner, inner), q = scalar_product(outer, inner);
     return qo >= qi && q >= 0 && q * q >= qo * qi;
