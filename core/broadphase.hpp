@@ -127,7 +127,9 @@ template <SphereTreeOps Ops>
 class Broadphase {
  public:
   using Sphere = typename Ops::Sphere;
-  explicit Broadphase(BroadphaseMethod method = BroadphaseMethod::sweep) : method_(method) {}
+  // margin: the trees' fat margin relative to each radius (the benchmarks vary it).
+  explicit Broadphase(BroadphaseMethod method = Collisions{}.broadphase, double margin = kFatMargin)
+      : method_(method), aabb_(margin), spheres_tree_(margin) {}
 
   // The bodies' bounding spheres by centre (world coordinates) and radius.
   BroadphaseResult find(std::span<const Vec3> centres, std::span<const double> radii,

@@ -19,13 +19,15 @@
 //     hierarchies"): a node's children can only cost more than the node's
 //     own "inherited" cost (the growth of every ancestor) plus the new leaf's,
 //     so whole subtrees are skipped once that bound passes the best so far;
-//   - every node on the way up from an insertion or a removal is refitted and
-//     then offered a rotation: one of its children swapped with a grandchild
+//   - every node on the way up from an insertion is refitted and then
+//     offered a rotation (after a removal, refitted only, as Box2D v3 does:
+//     the reinsertion that follows rotates): one of its children swapped with a grandchild
 //     on the other side, kept when it lowers the cost of the two nodes it
 //     changes (Kopta et al. 2012, "Fast, effective BVH updates for animated
 //     scenes"; Box2D v3's b2RotateNodes). This keeps the tree shallow without
 //     AVL balancing. Unlike a box, a parent sphere depends on how its leaves
-//     are grouped, so the gain counts the parent's change too (zero for boxes).
+//     are grouped, so the gain counts the parent's change too (a policy whose
+//     merge is grouping-free, the box union, says so and skips it).
 // A leaf is never moved in place: the caller removes it and inserts it again
 // (core/tree_broadphase.hpp does so only when a body leaves its fat volume).
 //
@@ -53,6 +55,9 @@ class DynamicTree {
  public:
   using Volume = typename V::Volume;
   static constexpr int kNull = -1;
+  // A parent that does not depend on how its leaves are grouped (the box
+  // union) needs no re-evaluation in a rotation: V::grouping_free.
+  static constexpr bool kGroupingFree = requires { requires V::grouping_free; };
   struct Node {
     Volume volume{};
     int parent = kNull, child1 = kNull, child2 = kNull;
@@ -99,7 +104,7 @@ class DynamicTree {
       return;
     }
     replace_child(above, parent, sibling);
-    walk_up(above);
+    for (int i = above; i != kNull; i = at(i).parent) refit(i);
   }
 
   // Calls on_leaf(item) for every leaf whose volume overlaps q. Every node
@@ -201,7 +206,7 @@ class DynamicTree {
     n.volume = V::merge(at(n.child1).volume, at(n.child2).volume);
     n.height = 1 + std::max(at(n.child1).height, at(n.child2).height);
   }
-  void walk_up(int from) {
+  void walk_up(int from) {  // after an insertion
     for (int i = from; i != kNull; i = at(i).parent) {
       refit(i);
       rotate(i);
@@ -243,7 +248,7 @@ class DynamicTree {
   void rotate(int a) {
     if (at(a).height < 2) return;
     const int b = at(a).child1, c = at(a).child2;
-    const double before = V::cost(at(a).volume);
+    const double before = kGroupingFree ? 0.0 : V::cost(at(a).volume);
     double best_gain = 0;
     int move = kNull, nephew = kNull;
     const auto consider = [&](int child, int other) {
@@ -251,8 +256,8 @@ class DynamicTree {
       if (o.leaf()) return;
       for (const auto& [up, kept] : {std::pair{o.child1, o.child2}, std::pair{o.child2, o.child1}}) {
         const Volume lowered = V::merge(at(child).volume, at(kept).volume);
-        const Volume top = V::merge(at(up).volume, lowered);
-        const double gain = V::cost(lowered) - V::cost(o.volume) + V::cost(top) - before;
+        double gain = V::cost(lowered) - V::cost(o.volume);
+        if constexpr (!kGroupingFree) gain += V::cost(V::merge(at(up).volume, lowered)) - before;
         if (gain < best_gain) best_gain = gain, move = child, nephew = up;
       }
     };

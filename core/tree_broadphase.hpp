@@ -39,6 +39,7 @@
 #include <algorithm>
 #include <concepts>
 #include <cstdint>
+#include <iterator>
 #include <span>
 #include <utility>
 #include <vector>
@@ -64,6 +65,7 @@ concept SphereTreeOps = BoundingSphereOps<Ops> && requires(const typename Ops::S
 // Boxes around the bounding spheres; the cost is half the surface area.
 struct AabbVolume {
   using Volume = Aabb;
+  static constexpr bool grouping_free = true;  // a union of boxes is one box however grouped
   static Aabb merge(const Aabb& a, const Aabb& b) { return {a.min.cwiseMin(b.min), a.max.cwiseMax(b.max)}; }
   static double cost(const Aabb& a) {
     const Vec3 e = a.max - a.min;
@@ -104,11 +106,12 @@ template <class V, BoundingSphereOps Ops>
 class TreeBroadphase {
  public:
   using Sphere = typename Ops::Sphere;
+  explicit TreeBroadphase(double margin = kFatMargin) : margin_(margin) {}
 
   // Forgets everything: the next update inserts every body afresh.
   void clear() {
     moving_.clear(), fixed_.clear();
-    leaf_.clear(), partners_.clear(), is_static_.clear();
+    leaf_.clear(), kept_.clear(), is_static_.clear();
   }
 
   // spheres[i]: body i's bounding sphere in the frame (Ops::sphere(centres[i],
@@ -119,29 +122,26 @@ class TreeBroadphase {
     if (leaf_.size() != n || is_static_ != is_static) {
       clear();
       leaf_.assign(n, kNull);
-      partners_.assign(n, {});
       is_static_ = is_static;
     }
     TreeWork work;
-    moved_.clear();
+    moved_.assign(n, 0);
+    bool any = false;
     for (std::size_t i = 0; i < n; ++i) {
       const auto tight = V::bound(centres[i], radii[i], spheres[i]);
       Tree& tree = tree_of(i);
       if (leaf_[i] != kNull && V::contains(tree.volume(leaf_[i]), tight)) continue;
       if (leaf_[i] != kNull) tree.remove(leaf_[i]);
-      leaf_[i] = tree.insert(V::grown(tight, kFatMargin * radii[i]), static_cast<int>(i));
-      moved_.push_back(static_cast<int>(i));
+      leaf_[i] = tree.insert(V::grown(tight, margin_ * radii[i]), static_cast<int>(i));
+      moved_[i] = 1, any = true;
+      ++work.reinserted;
     }
-    work.reinserted = static_cast<std::int64_t>(moved_.size());
-    find_pairs_of_moved();
-    for (std::size_t i = 0; i < n; ++i)
-      for (const int j : partners_[i]) {
-        if (j < static_cast<int>(i)) continue;
-        ++work.exact_tests;
-        work.kept += 1;
-        if (Ops::overlap(spheres[i], spheres[static_cast<std::size_t>(j)])) pairs.emplace_back(static_cast<int>(i), j);
-      }
-    std::sort(pairs.begin(), pairs.end());
+    if (any) find_pairs_of_moved();
+    work.kept = static_cast<std::int64_t>(kept_.size());
+    for (const auto& [i, j] : kept_) {
+      ++work.exact_tests;
+      if (Ops::overlap(spheres[static_cast<std::size_t>(i)], spheres[static_cast<std::size_t>(j)])) pairs.emplace_back(i, j);
+    }
     work.volume_tests = moving_.take_volume_tests() + fixed_.take_volume_tests();
     return work;
   }
@@ -151,49 +151,45 @@ class TreeBroadphase {
 
  private:
   using Tree = DynamicTree<V>;
+  using Pair = std::pair<int, int>;
   static constexpr int kNull = Tree::kNull;
+  double margin_;  // relative to each body's radius
   Tree moving_, fixed_;
-  std::vector<int> leaf_;                  // body → its leaf in its tree
-  std::vector<std::vector<int>> partners_;  // body → the bodies it is paired with (both ways)
+  std::vector<int> leaf_;    // body → its leaf in its tree
+  std::vector<Pair> kept_;   // the pairs whose fat volumes overlap, i < j, sorted
   std::vector<bool> is_static_;
-  std::vector<int> moved_;
-  std::vector<char> state_;  // per body during find_pairs_of_moved: 0 stayed, 1 moved, 2 queried
+  std::vector<char> moved_;  // this update's reinserted bodies
+  std::vector<Pair> fresh_, merged_;
 
   Tree& tree_of(std::size_t i) { return is_static_[i] ? fixed_ : moving_; }
 
-  static void unlink(std::vector<int>& list, int j) {
-    const auto it = std::find(list.begin(), list.end(), j);
-    if (it != list.end()) *it = list.back(), list.pop_back();
-  }
-
-  // Drops every pair of a moved body and finds them again from its new fat
-  // volume. A pair of two moved bodies may be found from either side (a
-  // query descends by rounded tests, so not necessarily from both): it is
-  // added by the first query that finds it and recognised by the second.
+  // The kept pairs of two bodies that stayed are still right; every pair of a
+  // moved body is dropped and found again by querying the trees with its new
+  // fat volume. A pair of two moved bodies may be found from either side (a
+  // query descends by rounded tests, so not necessarily from both); sorting
+  // the fresh pairs and dropping repeats keeps it once. Both lists are
+  // sorted and disjoint (every fresh pair has a moved body, no kept one
+  // does), so a merge gives the sorted whole.
   void find_pairs_of_moved() {
-    state_.assign(leaf_.size(), 0);
-    for (const int i : moved_) state_[static_cast<std::size_t>(i)] = 1;
-    for (const int i : moved_) {
-      auto& mine = partners_[static_cast<std::size_t>(i)];
-      for (const int j : mine)
-        if (state_[static_cast<std::size_t>(j)] == 0) unlink(partners_[static_cast<std::size_t>(j)], i);
-      mine.clear();
-    }
-    for (const int i : moved_) {
-      const auto ui = static_cast<std::size_t>(i);
+    std::erase_if(kept_, [&](const Pair& p) {
+      return moved_[static_cast<std::size_t>(p.first)] || moved_[static_cast<std::size_t>(p.second)];
+    });
+    fresh_.clear();
+    for (std::size_t i = 0; i < leaf_.size(); ++i) {
+      if (!moved_[i]) continue;
+      const int me = static_cast<int>(i);
       const auto add = [&](int j) {
-        const auto uj = static_cast<std::size_t>(j);
-        if (j == i) return;
-        auto& mine = partners_[ui];
-        if (state_[uj] == 2 && std::find(mine.begin(), mine.end(), j) != mine.end()) return;
-        mine.push_back(j);
-        partners_[uj].push_back(i);
+        if (j != me) fresh_.emplace_back(std::min(me, j), std::max(me, j));
       };
-      const auto& fat = tree_of(ui).volume(leaf_[ui]);
+      const auto& fat = tree_of(i).volume(leaf_[i]);
       moving_.query(fat, add);
-      if (!is_static_[ui]) fixed_.query(fat, add);
-      state_[ui] = 2;
+      if (!is_static_[i]) fixed_.query(fat, add);
     }
+    std::sort(fresh_.begin(), fresh_.end());
+    fresh_.erase(std::unique(fresh_.begin(), fresh_.end()), fresh_.end());
+    merged_.clear();
+    std::merge(kept_.begin(), kept_.end(), fresh_.begin(), fresh_.end(), std::back_inserter(merged_));
+    kept_.swap(merged_);
   }
 };
 
