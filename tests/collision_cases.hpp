@@ -485,7 +485,7 @@ TYPED_TEST_P(BoundingVolumeCases, OverlapAgreesWithTheDistanceTest) {
 // s² (rounding ~1e-15·s²), so outside |(ρo − ρi)² − d²| ≤ 1e-13·s². (Near
 // coincident centres that band is a room ρo − ρi of √1e-13·s ≈ 3e-7·s: the
 // conformal form cannot tell nearly equal concentric spheres apart more
-// finely; the tree's fat volumes leave a room of 0.1 ρ.)
+// finely; the tree's fat volumes leave a room of 0.4 ρ.)
 TYPED_TEST_P(BoundingVolumeCases, TreeNodeOperationsAgreeWithTheDistances) {
   using Ops = TypeParam;
   using O = OtherOps<Ops>;
