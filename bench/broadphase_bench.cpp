@@ -15,10 +15,12 @@
 // Before timing, each benchmark flies 256 steps (or sees every teleported
 // frame once), the trees built and the pairs found: the time is the steady
 // state's. One item = one detection
-// of Broadphase::find, the frame and the spheres included. Counters, per
+// of Broadphase::find as the collision step asks it: every sphere also grown
+// by how far its body flies in the step (the islands' candidates), the frame
+// and the spheres included. Counters, per
 // detection: candidates (volume tests: sweep pairs, or tree nodes tested plus
 // kept pairs), overlap_tests (exact sphere tests), tree_updates
-// (reinsertions), pairs_kept, pairs.
+// (reinsertions), pairs_kept, pairs, grown_pairs (the candidates).
 //
 // Names BM_<scene>/<backend>_<method>:
 //   python3 scripts/bench-ratios.py build/release/bench/broadphase_bench --reference traditional_sweep
@@ -49,7 +51,8 @@ constexpr double kStep = 1e-3;                       // s between detections
 struct World {
   std::vector<Vec3> start, velocity;
   std::vector<double> radii;
-  std::vector<bool> is_static;
+  std::vector<char> is_static;
+  std::vector<double> margins;  // how far each body flies in a step: the collision step's reach
   double half = 0;                     // the box's half side
   std::vector<std::vector<Vec3>> teleported;  // incoherent: 16 frames of uniform positions
 };
@@ -69,6 +72,7 @@ World make_world(int n) {
       w.velocity.push_back(Vec3::Zero());
       w.radii.push_back(wall);
       w.is_static.push_back(true);
+      w.margins.push_back(0);
     }
   std::mt19937_64 g(static_cast<std::uint64_t>(n));
   std::uniform_real_distribution<double> rad(0.08, 0.18), u(-1, 1), speed(0.5, 2);
@@ -78,6 +82,7 @@ World make_world(int n) {
     w.velocity.push_back(speed(g) * Vec3(u(g), u(g), u(g)).normalized());
     w.radii.push_back(r);
     w.is_static.push_back(false);
+    w.margins.push_back(kStep * w.velocity.back().norm());
   }
   for (int f = 0; f < 16; ++f) {
     std::vector<Vec3> c(w.start.begin(), w.start.begin() + 6);
@@ -112,19 +117,21 @@ void detect(benchmark::State& st, int n, bool coherent, BroadphaseMethod method,
   // teleported frame seen once).
   for (int i = 0; i < (coherent ? 256 : 16); ++i) {
     if (coherent) fly(w, c, v);
-    bp.find(coherent ? c : w.teleported[static_cast<std::size_t>(i)], w.radii, w.is_static);
+    bp.find(coherent ? c : w.teleported[static_cast<std::size_t>(i)], w.radii, w.is_static, w.margins);
   }
   core::BroadphaseCounters sum;
+  std::int64_t sum_candidates = 0;
   std::size_t i = 0;
   for (auto _ : st) {
     if (coherent) fly(w, c, v);
-    const auto r = bp.find(coherent ? c : w.teleported[i++ % 16], w.radii, w.is_static);
+    const auto r = bp.find(coherent ? c : w.teleported[i++ % 16], w.radii, w.is_static, w.margins);
     benchmark::DoNotOptimize(r.pairs.data());
     sum.candidates += r.counters.candidates;
     sum.overlap_tests += r.counters.overlap_tests;
     sum.tree_updates += r.counters.tree_updates;
     sum.pairs_kept += r.counters.pairs_kept;
     sum.pairs += r.counters.pairs;
+    sum_candidates += static_cast<std::int64_t>(r.candidates.size());
   }
   st.SetItemsProcessed(st.iterations());
   const auto per = [](std::int64_t x) { return benchmark::Counter(static_cast<double>(x), benchmark::Counter::kAvgIterations); };
@@ -133,6 +140,7 @@ void detect(benchmark::State& st, int n, bool coherent, BroadphaseMethod method,
   st.counters["tree_updates"] = per(sum.tree_updates);
   st.counters["pairs_kept"] = per(sum.pairs_kept);
   st.counters["pairs"] = per(sum.pairs);
+  st.counters["grown_pairs"] = per(sum_candidates);
 }
 
 // The flight alone, which the coherent benchmarks include in their time.

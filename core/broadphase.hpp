@@ -52,6 +52,9 @@ struct BroadphaseCounters {
 };
 struct BroadphaseResult {
   std::vector<std::pair<int, int>> pairs;  // i < j, sorted
+  // With margins (Broadphase::find): the pairs whose grown spheres overlap,
+  // i < j, sorted, a superset of `pairs`.
+  std::vector<std::pair<int, int>> candidates;
   BroadphaseCounters counters;
   int axis = 0;  // 0, 1, 2: x, y, z
 };
@@ -111,8 +114,10 @@ BroadphaseResult sort_and_sweep(std::span<const typename Ops::Sphere> spheres) {
 
 // The collision pipeline's broadphase (issue #14): one call per detection,
 // whichever method the scene names (`broadphase`: "sweep", "aabb_tree",
-// "sphere_tree"; core/scene.hpp), the same pairs from each. Two static bodies
-// are never a pair.
+// "sphere_tree"; core/scene.hpp), the same pairs from each: those whose
+// bounding spheres pass Ops::overlap and, given margins (how far each body can
+// move in the step), the candidates whose spheres grown by them do. Two static
+// bodies are never a pair.
 //
 // The frame (issue #16 item 6): a conformal sphere stores ½|c|² beside c, so
 // world coordinates 1e5 m from the origin cost its overlap test 10 digits;
@@ -131,21 +136,33 @@ class Broadphase {
   explicit Broadphase(BroadphaseMethod method = Collisions{}.broadphase, double margin = kFatMargin)
       : method_(method), aabb_(margin), spheres_tree_(margin) {}
 
-  // The bodies' bounding spheres by centre (world coordinates) and radius.
-  BroadphaseResult find(std::span<const Vec3> centres, std::span<const double> radii,
-                        const std::vector<bool>& is_static) {
-    place(centres, radii);
+  // The bodies' bounding spheres by centre (world coordinates) and radius;
+  // margins empty, or one per body (≥ 0).
+  BroadphaseResult find(std::span<const Vec3> centres, std::span<const double> radii, std::span<const char> is_static,
+                        std::span<const double> margins = {}) {
+    place(centres, radii, margins);
     BroadphaseResult out;
-    const std::span<const Sphere> s(spheres_);
+    const BroadphaseBodies<Sphere> b{local_, radii, margins, spheres_, margins.empty() ? spheres_ : grown_, is_static};
     if (method_ == BroadphaseMethod::sweep) {
-      out = sort_and_sweep<Ops>(s);
-      std::erase_if(out.pairs, [&](const std::pair<int, int>& p) {
+      const auto both_static = [&](const std::pair<int, int>& p) {
         return is_static[static_cast<std::size_t>(p.first)] && is_static[static_cast<std::size_t>(p.second)];
-      });
+      };
+      BroadphaseResult swept = sort_and_sweep<Ops>(b.grown);
+      std::erase_if(swept.pairs, both_static);
+      out.counters = swept.counters;
+      if (margins.empty()) {
+        out.pairs = std::move(swept.pairs);
+      } else {
+        out.candidates = std::move(swept.pairs);
+        for (const auto& [i, j] : out.candidates) {
+          ++out.counters.candidates, ++out.counters.overlap_tests;
+          if (Ops::overlap(spheres_[static_cast<std::size_t>(i)], spheres_[static_cast<std::size_t>(j)]))
+            out.pairs.emplace_back(i, j);
+        }
+      }
     } else {
-      const TreeWork w = method_ == BroadphaseMethod::aabb_tree
-                             ? aabb_.update(s, local_, radii, is_static, out.pairs)
-                             : spheres_tree_.update(s, local_, radii, is_static, out.pairs);
+      const TreeWork w = method_ == BroadphaseMethod::aabb_tree ? aabb_.update(b, out.pairs, out.candidates)
+                                                                : spheres_tree_.update(b, out.pairs, out.candidates);
       out.counters.candidates = w.volume_tests + w.exact_tests;
       out.counters.overlap_tests = w.exact_tests;
       out.counters.tree_updates = w.reinserted;
@@ -164,11 +181,11 @@ class Broadphase {
   Vec3 frame_ = Vec3::Zero();
   int frames_ = 0;
   std::vector<Vec3> local_;  // centres in the frame
-  std::vector<Sphere> spheres_;
+  std::vector<Sphere> spheres_, grown_;
   TreeBroadphase<AabbVolume, Ops> aabb_;
   TreeBroadphase<SphereVolume<Ops>, Ops> spheres_tree_;
 
-  void place(std::span<const Vec3> centres, std::span<const double> radii) {
+  void place(std::span<const Vec3> centres, std::span<const double> radii, std::span<const double> margins) {
     const std::size_t n = centres.size();
     Vec3 mean = Vec3::Zero();
     for (const Vec3& c : centres) mean += c;
@@ -183,9 +200,11 @@ class Broadphase {
     }
     local_.resize(n);
     spheres_.clear();
+    grown_.clear();
     for (std::size_t i = 0; i < n; ++i) {
       local_[i] = centres[i] - frame_;
       spheres_.push_back(Ops::sphere(local_[i], radii[i]));
+      if (!margins.empty()) grown_.push_back(Ops::sphere(local_[i], radii[i] + margins[i]));
     }
   }
 };

@@ -100,10 +100,23 @@ struct SphereVolume {
   static Volume grown(const Volume& s, double by) { return Ops::grown(s, by); }
 };
 
+// One detection's bodies, in the broadphase's frame. With margins (how far
+// each body can move in the step; empty for none), the grown spheres'
+// overlaps are wanted too: the islands' links (core/collision_step.hpp).
+template <class Sphere>
+struct BroadphaseBodies {
+  std::span<const Vec3> centres;
+  std::span<const double> radii;    // the bounding spheres'
+  std::span<const double> margins;  // empty, or one per body
+  std::span<const Sphere> spheres;  // Ops::sphere(centre, radius)
+  std::span<const Sphere> grown;    // Ops::sphere(centre, radius + margin); = spheres without margins
+  std::span<const char> is_static;
+};
+
 // The work of one update, for the counters.
 struct TreeWork {
   std::int64_t volume_tests = 0;  // tree nodes tested by the queries
-  std::int64_t exact_tests = 0;   // kept pairs given Ops::overlap
+  std::int64_t exact_tests = 0;   // Ops::overlap calls on kept pairs
   std::int64_t reinserted = 0;    // leaves (re)inserted
   std::int64_t kept = 0;          // pairs kept after the update
 };
@@ -120,33 +133,42 @@ class TreeBroadphase {
     leaf_.clear(), kept_.clear(), is_static_.clear();
   }
 
-  // spheres[i]: body i's bounding sphere in the frame (Ops::sphere(centres[i],
-  // radii[i])); the overlapping pairs (i < j, sorted) are appended to `pairs`.
-  TreeWork update(std::span<const Sphere> spheres, std::span<const Vec3> centres, std::span<const double> radii,
-                  const std::vector<bool>& is_static, std::vector<std::pair<int, int>>& pairs) {
-    const std::size_t n = spheres.size();
-    if (leaf_.size() != n || is_static_ != is_static) {
+  // Appends the pairs whose spheres overlap to `pairs` and, with margins, the
+  // pairs whose grown spheres do to `candidates` (both i < j, sorted; every
+  // pair is a candidate). A leaf bounds the grown sphere, so its fat volume
+  // holds it while the body moves less than the fat margin less its growth.
+  TreeWork update(const BroadphaseBodies<Sphere>& b, std::vector<std::pair<int, int>>& pairs,
+                  std::vector<std::pair<int, int>>& candidates) {
+    const std::size_t n = b.spheres.size();
+    if (leaf_.size() != n || !std::equal(is_static_.begin(), is_static_.end(), b.is_static.begin(), b.is_static.end())) {
       clear();
       leaf_.assign(n, kNull);
-      is_static_ = is_static;
+      is_static_.assign(b.is_static.begin(), b.is_static.end());
     }
+    const bool growing = !b.margins.empty();
     TreeWork work;
     moved_.assign(n, 0);
     bool any = false;
     for (std::size_t i = 0; i < n; ++i) {
-      const auto tight = V::bound(centres[i], radii[i], spheres[i]);
+      const auto tight = V::bound(b.centres[i], b.radii[i] + (growing ? b.margins[i] : 0.0), b.grown[i]);
       Tree& tree = tree_of(i);
       if (leaf_[i] != kNull && V::contains(tree.volume(leaf_[i]), tight)) continue;
       if (leaf_[i] != kNull) tree.remove(leaf_[i]);
-      leaf_[i] = tree.insert(V::grown(tight, margin_ * radii[i]), static_cast<int>(i));
+      leaf_[i] = tree.insert(V::grown(tight, margin_ * b.radii[i]), static_cast<int>(i));
       moved_[i] = 1, any = true;
       ++work.reinserted;
     }
     if (any) find_pairs_of_moved();
     work.kept = static_cast<std::int64_t>(kept_.size());
     for (const auto& [i, j] : kept_) {
+      const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+      if (growing) {
+        ++work.exact_tests;
+        if (!Ops::overlap(b.grown[ui], b.grown[uj])) continue;
+        candidates.emplace_back(i, j);
+      }
       ++work.exact_tests;
-      if (Ops::overlap(spheres[static_cast<std::size_t>(i)], spheres[static_cast<std::size_t>(j)])) pairs.emplace_back(i, j);
+      if (Ops::overlap(b.spheres[ui], b.spheres[uj])) pairs.emplace_back(i, j);
     }
     work.volume_tests = moving_.take_volume_tests() + fixed_.take_volume_tests();
     return work;
@@ -163,7 +185,7 @@ class TreeBroadphase {
   Tree moving_, fixed_;
   std::vector<int> leaf_;    // body → its leaf in its tree
   std::vector<Pair> kept_;   // the pairs whose fat volumes overlap, i < j, sorted
-  std::vector<bool> is_static_;
+  std::vector<char> is_static_;
   std::vector<char> moved_;  // this update's reinserted bodies
   std::vector<Pair> fresh_, merged_;
 

@@ -141,15 +141,18 @@ const char* name_of(BroadphaseMethod m) {
 struct Bodies {
   std::vector<Vec3> centres;
   std::vector<double> radii;
-  std::vector<bool> is_static;
+  std::vector<char> is_static;
+  std::vector<double> margins;  // empty: no candidates asked for
 };
 
 // All pairs with the backend's own test on the spheres the broadphase formed
-// (the same expression in its frame, so the same numbers), static pairs left out.
+// (the same expression in its frame, so the same numbers), grown by the
+// margins or not, static pairs left out.
 template <class Ops>
-std::vector<std::pair<int, int>> all_pairs_in_frame(const Bodies& b, const Vec3& frame) {
+std::vector<std::pair<int, int>> all_pairs_in_frame(const Bodies& b, const Vec3& frame, bool grown) {
   std::vector<typename Ops::Sphere> s;
-  for (std::size_t i = 0; i < b.centres.size(); ++i) s.push_back(Ops::sphere(b.centres[i] - frame, b.radii[i]));
+  for (std::size_t i = 0; i < b.centres.size(); ++i)
+    s.push_back(Ops::sphere(b.centres[i] - frame, b.radii[i] + (grown ? b.margins[i] : 0.0)));
   auto out = all_pairs<Ops>(s);
   std::erase_if(out, [&](const auto& p) {
     return b.is_static[static_cast<std::size_t>(p.first)] && b.is_static[static_cast<std::size_t>(p.second)];
@@ -158,7 +161,8 @@ std::vector<std::pair<int, int>> all_pairs_in_frame(const Bodies& b, const Vec3&
 }
 
 // One broadphase per method, fed the same bodies; each answer checked against
-// all pairs. Returns the first method's result.
+// all pairs, and with margins the candidates against all pairs of the grown
+// spheres.
 template <class Ops>
 struct Methods {
   std::vector<Broadphase<Ops>> bp;
@@ -168,9 +172,12 @@ struct Methods {
   std::vector<BroadphaseResult> find(const Bodies& b, const std::string& where) {
     std::vector<BroadphaseResult> out;
     for (auto& p : bp) {
-      out.push_back(p.find(b.centres, b.radii, b.is_static));
-      EXPECT_EQ(out.back().pairs, all_pairs_in_frame<Ops>(b, p.frame())) << name_of(p.method()) << " " << where;
-      EXPECT_EQ(out.back().counters.pairs, static_cast<std::int64_t>(out.back().pairs.size()));
+      out.push_back(p.find(b.centres, b.radii, b.is_static, b.margins));
+      const auto& r = out.back();
+      EXPECT_EQ(r.pairs, all_pairs_in_frame<Ops>(b, p.frame(), false)) << name_of(p.method()) << " " << where;
+      if (b.margins.empty()) EXPECT_TRUE(r.candidates.empty());
+      else EXPECT_EQ(r.candidates, all_pairs_in_frame<Ops>(b, p.frame(), true)) << name_of(p.method()) << " " << where;
+      EXPECT_EQ(r.counters.pairs, static_cast<std::int64_t>(r.pairs.size()));
     }
     return out;
   }
@@ -183,9 +190,11 @@ struct Methods {
 // then only those that left their fat volumes: under a quarter per update on
 // average (a body moving 0.02 a step in a straight line leaves a margin of
 // kFatMargin·ρ = 0.4 ρ every 20ρ steps; over ρ uniform in [0.2, 1],
-// E[0.05/ρ] = 0.10, and the teleports add 0.002). An
-// update with nothing moved reinserts nothing and tests no tree node: its
-// candidates are exactly the kept pairs.
+// E[0.05/ρ] = 0.10, and the teleports add 0.002). Every other update asks
+// for candidates too, with each sphere grown by 1–2 times its body's step
+// (as the collision step grows them by how far a body can move): they equal
+// all pairs of the grown spheres. An update with nothing moved reinserts
+// nothing and tests no tree node: its candidates are exactly the kept pairs.
 TYPED_TEST(Broadphases, EveryMethodGivesAllPairsAsBodiesMove) {
   using Ops = TypeParam;
   std::mt19937_64 g(21);
@@ -209,6 +218,9 @@ TYPED_TEST(Broadphases, EveryMethodGivesAllPairsAsBodiesMove) {
         if (c[k] < 0 || c[k] > 20) v[static_cast<std::size_t>(i)][k] *= -1;
       if (step % 50 == 49 && i % 10 == 1) c = Vec3(u(g), u(g), u(g));
     }
+    b.margins.clear();
+    if (step % 2)
+      for (int i = 0; i < n; ++i) b.margins.push_back(v[static_cast<std::size_t>(i)].norm() * (1.5 + 0.5 * dir(g)));
     const auto r = m.find(b, "step " + std::to_string(step));
     pairs += r[0].counters.pairs;
     for (std::size_t k = 1; k < r.size(); ++k) {
@@ -220,6 +232,7 @@ TYPED_TEST(Broadphases, EveryMethodGivesAllPairsAsBodiesMove) {
   }
   EXPECT_GT(pairs, 300);
   EXPECT_LT(updates, 2 * 299 * n / 4) << "reinsertions, both trees";
+  b.margins.clear();
   const auto again = m.find(b, "still");
   const auto still = m.find(b, "still");
   for (std::size_t k = 1; k < still.size(); ++k) {
@@ -234,8 +247,8 @@ TYPED_TEST(Broadphases, EveryMethodGivesAllPairsAsBodiesMove) {
 // Degenerate scenes, every method: equal spheres exactly touching (a 6³ grid
 // at spacing 1, radius ½: integers and halves, exact in both algebras; the
 // 540 face neighbours touch, the diagonals do not), twenty bodies on one
-// centre with every radius, a static pair that overlaps (never reported) with
-// a moving body overlapping both.
+// centre with every radius, a static pair that overlaps (never reported, nor
+// as a candidate) with a moving body overlapping both.
 TYPED_TEST(Broadphases, TouchingCoincidentAndStaticScenes) {
   using Ops = TypeParam;
   Bodies grid;
@@ -259,9 +272,11 @@ TYPED_TEST(Broadphases, TouchingCoincidentAndStaticScenes) {
     EXPECT_GE(r[0].pairs.size(), 190u);  // the 20·19/2 on one centre, and any others
   }
 
-  Bodies statics{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0.5, 0)}, {1, 1, 0.3}, {true, true, false}};
-  for (const auto& r : Methods<Ops>().find(statics, "statics"))
-    EXPECT_EQ(r.pairs, (std::vector<std::pair<int, int>>{{0, 2}, {1, 2}}));
+  Bodies statics{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0.5, 0)}, {1, 1, 0.3}, {1, 1, 0}, {}};
+  const std::vector<std::pair<int, int>> want{{0, 2}, {1, 2}};
+  for (const auto& r : Methods<Ops>().find(statics, "statics")) EXPECT_EQ(r.pairs, want);
+  statics.margins = {0.5, 0.5, 0.5};
+  for (const auto& r : Methods<Ops>().find(statics, "statics grown")) EXPECT_EQ(r.candidates, want);
 }
 
 // Far from the origin: 300 random bodies around (D, D, D), D = 1e3 … 1e9 m.
@@ -275,7 +290,7 @@ TYPED_TEST(Broadphases, FarFromTheOriginGivesTheDistanceTestsPairs) {
   for (const double d : {1e3, 1e5, 1e7, 1e9}) {
     Scene far = near;
     for (auto& c : far.centres) c += Vec3::Constant(d);
-    Bodies b{far.centres, far.radii, std::vector<bool>(300, false)};
+    Bodies b{far.centres, far.radii, std::vector<char>(300, 0), {}};
     Methods<Ops> m;
     for (int round = 0; round < 2; ++round)
       for (const auto& r : m.find(b, "D " + std::to_string(d))) EXPECT_EQ(r.pairs, by_distance(far)) << d;
@@ -293,7 +308,7 @@ TYPED_TEST(Broadphases, TheFrameFollowsBodiesThatDrift) {
   Methods<Ops> m;
   for (int step = 0; step < 200; ++step) {
     for (auto& c : s.centres) c += Vec3(1e3, 0, 0);
-    Bodies b{s.centres, s.radii, std::vector<bool>(50, false)};
+    Bodies b{s.centres, s.radii, std::vector<char>(50, 0), {}};
     for (const auto& r : m.find(b, "step " + std::to_string(step))) EXPECT_EQ(r.pairs, by_distance(s)) << step;
     Vec3 mean = Vec3::Zero();
     for (const auto& c : s.centres) mean += c / 50.0;
