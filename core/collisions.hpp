@@ -473,9 +473,23 @@ struct Collider {
     if (std::find(correct.begin(), correct.end(), 1) == correct.end()) return;
     std::vector<int> points(correct.size(), 0);
     for (const auto& r : rows) ++points[r.hit];
+    // A face's rows act at the centres along one normal: the same row, whose
+    // target is the deepest corner's (four copies with their own targets are
+    // the same problem, solved slowly: the copies fight over one degree of
+    // freedom, and no exact step can satisfy them all).
+    std::vector<int> face_row(correct.size(), -1);
     for (const auto& r : rows) {
-      Row p = r;
+      const double target = correct[r.hit] ? std::max(0.0, r.depth - 0.25 * tol) : 0.0;
       if (points[r.hit] >= 3) {  // a face: at the centres, no turn
+        if (face_row[r.hit] >= 0) {
+          Row& q = fix[static_cast<std::size_t>(face_row[r.hit])];
+          q.target = std::max(q.target, target);
+          continue;
+        }
+        face_row[r.hit] = static_cast<int>(fix.size());
+      }
+      Row p = r;
+      if (points[r.hit] >= 3) {
         const auto& ma = motion[r.sa];
         const auto& mb = motion[r.sb];
         p.arm_a = Bodies::arm(ma, Bodies::position(ma), r.n);
@@ -483,7 +497,7 @@ struct Collider {
         p.k = Bodies::inverse_effective_mass(ma, p.arm_a) + Bodies::inverse_effective_mass(mb, p.arm_b);
       }
       p.lambda = 0;
-      p.target = correct[r.hit] ? std::max(0.0, r.depth - 0.25 * tol) : 0.0;
+      p.target = target;
       fix.push_back(p);
     }
     Motions pseudo;
