@@ -54,7 +54,7 @@ namespace gacompare::core {
 // flattens (0.8: within 10% in both backends): its kept pairs, each given the
 // exact test (the conformal one 3× the distance test), grow as fast as its
 // reinsertions fall. The sphere tree, whose insertions cost more, is faster
-// still at 0.8 (0.7× its time at 0.4); but a denser scene keeps more pairs
+// still at 0.8 (0.8× its time at 0.4); but a denser scene keeps more pairs
 // per margin, so one margin, the smaller, for both.
 inline constexpr double kFatMargin = 0.4;
 
