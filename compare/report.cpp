@@ -1,6 +1,7 @@
 #include "compare/report.hpp"
 
 #include "compare/check.hpp"
+#include "compare/replay.hpp"
 #include "compare/results.hpp"
 #include "compare/sanity.hpp"
 #include "compare/stats.hpp"
@@ -59,8 +60,10 @@ const BackendResult* find(const SceneResult& r, std::string_view name) {
 
 std::string header(const MachineInfo& m, int repeats) {
   std::ostringstream o;
-  o << "gacompare " << tool_version() << " (" << m.build_type << ", " << m.compiler << ") on " << m.cpu << ", "
-    << m.date << ". Times are medians over " << repeats
+  o << "gacompare " << tool_version() << " (" << m.build_type << ", " << m.compiler << ", commit "
+    << m.build.commit.substr(0, 12) << (m.build.dirty == "yes" ? " with uncommitted changes" : m.build.dirty == "no" ? "" : ", tree state unknown")
+    << ") on " << m.cpu << " (" << m.usable_cpus << " CPUs usable, load average " << fmt("%.2f", m.load_average[0])
+    << " at the start), " << m.date << ". Times are medians over " << repeats
     << " repeats, backends interleaved, with min–max in brackets; ratios are cga/traditional over paired repeats.\n";
   return o.str();
 }
@@ -407,6 +410,8 @@ void write_reports(const std::filesystem::path& dir, const std::vector<SceneResu
     write_file_atomically(d / "stages.csv", stage_csv({r}));
     write_file_atomically(d / "report.md", scene_report_md(r, machine, repeats));
     write_file_atomically(d / "report.html", scene_report_html(r, machine, repeats));
+    write_file_atomically(d / "trajectories.csv", trajectories_csv(r));
+    write_file_atomically(d / "replay.html", replay_html(r));
   };
   if (results.size() == 1) {
     write_scene(dir, results.front());

@@ -13,9 +13,7 @@
 
 namespace gacompare::compare {
 
-namespace {
-
-std::string escape(const std::string& s) {
+std::string html_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     if (c == '<') out += "&lt;";
@@ -27,9 +25,11 @@ std::string escape(const std::string& s) {
   return out;
 }
 
+namespace {
+
 // The inline markdown report.md uses: `code`, **bold**, [text](link).
 std::string inline_md(const std::string& text) {
-  const std::string s = escape(text);
+  const std::string s = html_escape(text);
   std::string out;
   for (std::size_t i = 0; i < s.size();) {
     if (s[i] == '`') {
@@ -214,7 +214,7 @@ std::string figures(const SceneResult& r) {
 }  // namespace
 
 std::string html_page(const std::string& title, const std::string& body) {
-  return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + escape(title) +
+  return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + html_escape(title) +
          "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}"
          "table{border-collapse:collapse;margin:1em 0}th,td{border:1px solid #ccc;padding:.3em .6em}"
          "td{text-align:right}td:first-child{text-align:left}th{background:#f3f3f3}"

@@ -43,7 +43,29 @@ TEST(Cli, CompareWritesResultsAndReportForBothBackends) {
   EXPECT_FALSE(j["tool"]["version"].get<std::string>().empty());
   EXPECT_EQ(j["scene"]["name"], "projectile_linear_drag");
   EXPECT_EQ(j["scene"]["sha256"].get<std::string>().size(), 64u);
-  for (const char* k : {"cpu", "compiler", "date"}) EXPECT_FALSE(j["machine"][k].get<std::string>().empty()) << k;
+  for (const char* k : {"cpu", "compiler", "date", "flags", "build_type"})
+    EXPECT_FALSE(j["machine"][k].get<std::string>().empty()) << k;
+  EXPECT_GE(j["machine"]["logical_cpus"].get<int>(), 1);
+  EXPECT_GE(j["machine"]["usable_cpus"].get<int>(), 1);
+  EXPECT_LE(j["machine"]["usable_cpus"].get<int>(), j["machine"]["logical_cpus"].get<int>());
+  for (const char* when : {"start", "end"}) {
+    ASSERT_EQ(j["machine"]["load_average"][when].size(), 3u) << when;
+    EXPECT_GE(j["machine"]["load_average"][when][0].get<double>(), 0.0) << when;
+  }
+  EXPECT_NE(j["machine"]["flags"].get<std::string>().find("-O"), std::string::npos);  // a Release build
+  // The commit this binary was built at: the test command builds before it
+  // tests, so it is the checkout's HEAD (a stale binary after a commit fails
+  // here until it is rebuilt). Dirty is a boolean in a git checkout.
+  FILE* git = ::popen(("git -C " + std::string(GACOMPARE_SOURCE_DIR) + " rev-parse HEAD 2>/dev/null").c_str(), "r");
+  char head[64] = {0};
+  const bool have_git = git && std::fgets(head, sizeof head, git) != nullptr;
+  if (git) ::pclose(git);
+  if (have_git) {
+    EXPECT_EQ(j["machine"]["git"]["commit"], std::string(head, 40));
+    EXPECT_TRUE(j["machine"]["git"]["dirty"].is_boolean());
+  } else {
+    EXPECT_EQ(j["machine"]["git"]["commit"], "unknown");
+  }
   ASSERT_EQ(j["runs"].size(), 2u);
   EXPECT_EQ(j["runs"][0]["backend"], "traditional");
   EXPECT_EQ(j["runs"][1]["backend"], "cga");
@@ -150,6 +172,59 @@ TEST(Cli, BadUsageExitsTwo) {
   EXPECT_EQ(gacompare("compare " + kScene + " --repeat 0").code, 2);
 }
 
+// Every refusal is one line naming what was wrong and what would be right.
+TEST(Cli, MistakesGetOneLineSayingWhatWasMeant) {
+  auto one_line = [](const Result& r, const std::string& says) {
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  };
+  one_line(gacompare("comapre " + kScene), "'comapre' is not a command (run, compare, check, sweep, merge, diff, list, "
+                                           "collide or corpus); did you mean 'compare'?");
+  one_line(gacompare("--quiet frobnicate"), "'frobnicate' is not a command");
+  one_line(gacompare("run " + kScene + " --backend cgaa"), "--backend: 'cgaa' is not a backend (traditional, cga or "
+                                                           "bullet); did you mean 'cga'?");
+  one_line(gacompare("run " + kScene), "--backend is required");
+  one_line(gacompare("compare " + kScene + " --repeat 0"), "--repeat: expected a whole number ≥ 1, got 0");
+  one_line(gacompare("compare " + kScene + " --repeat 99999999999999"), "got 99999999999999, above 2147483647");
+  one_line(gacompare("compare " + kScene + " --repeat x"), "--repeat: expected a whole number ≥ 1, got 'x'");
+  one_line(gacompare("compare " + kScene + " --accuracy -1"), "--accuracy: expected a number > 0, got '-1'");
+  one_line(gacompare("sweep " + kScene + " --repeats 3 --out x"), "--repeats is spelt --repeat in every command now");
+  one_line(gacompare("compare --backends cga traditional " + kScene), "'traditional' is a backend, not a scene file");
+}
+
+// A list option takes one value per use (comma-separated), so it cannot
+// swallow the scenes after it; --help shows every default.
+TEST(Cli, OptionsBeforeTheScenesLeaveThemAloneAndHelpShowsDefaults) {
+  const fs::path out = fresh_dir("backends_first");
+  const Result r = gacompare("compare --backends cga,traditional --repeat 1 " + kScene + " --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = read_json(out / "results.json");
+  ASSERT_EQ(j["runs"].size(), 2u);
+  EXPECT_EQ(j["runs"][0]["backend"], "cga");
+  const Result help = gacompare("compare --help");
+  EXPECT_NE(help.out.find("--repeat INT=5"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("--backends TEXT=[traditional,cga,bullet]"), std::string::npos) << help.out;
+  EXPECT_NE(gacompare("sweep --help").out.find("--repeat INT=3"), std::string::npos);
+}
+
+// Progress: one line per scene and repeat on stderr even when it is a file (as
+// here), none with --quiet; stdout holds the report folder alone either way.
+TEST(Cli, ProgressOnStderrUnlessQuiet) {
+  const std::string data = std::string(GACOMPARE_DATA_DIR) + "/scenes/";
+  const std::string cmd = "compare " + kScene + " " + data + "falling_quadratic_drag.json --repeat 2 --out ";
+  const fs::path loud_out = fresh_dir("loud");
+  const Result loud = gacompare(cmd + loud_out.string());
+  ASSERT_EQ(loud.code, 0) << loud.err;
+  EXPECT_EQ(std::count(loud.err.begin(), loud.err.end(), '\n'), 4) << loud.err;  // 2 scenes x 2 repeats
+  EXPECT_NE(loud.err.find("gacompare: [2/2] falling_quadratic_drag: repeat 2/2, traditional "), std::string::npos)
+      << loud.err;
+  EXPECT_EQ(loud.out, loud_out.string() + "\n");
+  const Result quiet = gacompare(cmd + fresh_dir("quiet").string() + " --quiet");
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+}
+
 TEST(Cli, FailedRunExitsOneAndKeepsItsResults) {
   const fs::path dir = fresh_dir("nan");
   write_text(dir / "nan.json", R"({"name": "nan", "duration": 1.0, "output": {"every": 0.5},
@@ -234,7 +309,7 @@ std::vector<std::string> fields(const std::string& line) {
 TEST(Cli, ShardedSweepMergesIntoTheUnshardedOneAndResumes) {
   const std::string sweep = "sweep " + std::string(GACOMPARE_DATA_DIR) +
                             "/scenes/kepler.json --solvers cash_karp45,rk4 --tolerances 1e-4:1e-7 --steps 1e-2:1 "
-                            "--repeats 1 --quiet --out ";
+                            "--repeat 1 --quiet --out ";
   const fs::path whole = fresh_dir("sweep_whole");
   const Result r = gacompare(sweep + whole.string());
   ASSERT_EQ(r.code, 0) << r.err;
@@ -270,7 +345,7 @@ TEST(Cli, ShardedSweepMergesIntoTheUnshardedOneAndResumes) {
 TEST(Cli, SweepOfABodyMeasuresEveryErrorAndDrawsOrientation) {
   const std::string sweep = "sweep " + std::string(GACOMPARE_DATA_DIR) +
                             "/scenes/dzhanibekov.json --solvers rk4 --steps 1e-2:1 --no-peer --max-duration 2 "
-                            "--repeats 1 --quiet --out ";
+                            "--repeat 1 --quiet --out ";
   const fs::path dir = fresh_dir("sweep_body");
   ASSERT_EQ(gacompare(sweep + dir.string()).code, 0);
   std::istringstream csv(read_text(dir / "sweep.csv"));
