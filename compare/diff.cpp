@@ -142,7 +142,15 @@ void diff_scene(const RunFile& a, const RunFile& b, const DiffOptions& options, 
       }
       const auto ta = repeat_seconds(run_a, stage), tb = repeat_seconds(*run_b, stage);
       CheckLine l = time_ratio_line(name, backend, what, ta, tb, options.max_time_ratio);
-      l.note = "A " + format_seconds(spread(ta).median) + ", B " + format_seconds(spread(tb).median) + "; " + l.note;
+      // The ratio is of means (what the interval is of); the medians beside
+      // them show where one slow repeat pulled a mean.
+      const auto times = [](const std::vector<double>& t) {
+        double sum = 0;
+        for (double x : t) sum += x;
+        return format_seconds(t.empty() ? 0 : sum / static_cast<double>(t.size())) + " mean, " +
+               format_seconds(spread(t).median) + " median";
+      };
+      l.note = "A " + times(ta) + "; B " + times(tb) + "; " + l.note;
       out.push_back(std::move(l));
     }
     // State: B's samples against A's, pair by pair.

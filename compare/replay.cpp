@@ -96,16 +96,20 @@ constexpr const char* kViewer = R"JS(
   const palette = [0xd1495b, 0x2e86ab, 0xedae49, 0x66a182, 0x8f5dc2, 0xf17f29, 0x00798c, 0xc2185b];
   const colour = (i) => palette[i % palette.length];
 
-  // The box every backend's every frame fits in: the camera's target and distance.
+  // The box every backend's every frame of what moves fits in (static bodies
+  // only where nothing moves: a slab or a wall would make a falling cube a
+  // speck): the camera's target and distance.
   const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
   const grow = (x, y, z, r) => {
     const p = [x, y, z];
     for (let i = 0; i < 3; ++i) { lo[i] = Math.min(lo[i], p[i] - r); hi[i] = Math.max(hi[i], p[i] + r); }
   };
+  const moving = data.bodies.some((b) => !b.static) || np > 0;
   for (const b of data.backends)
     for (const f of b.frames) {
       if (!f.length) continue;
-      for (let i = 0; i < nb; ++i) grow(f[7 * i], f[7 * i + 1], f[7 * i + 2], data.bodies[i].radius);
+      for (let i = 0; i < nb; ++i)
+        if (!moving || !data.bodies[i].static) grow(f[7 * i], f[7 * i + 1], f[7 * i + 2], data.bodies[i].radius);
       for (let i = 0; i < np; ++i) grow(f[7 * nb + 3 * i], f[7 * nb + 3 * i + 1], f[7 * nb + 3 * i + 2], 0);
     }
   if (!isFinite(lo[0])) { lo.fill(-1); hi.fill(1); }

@@ -1,6 +1,7 @@
 // The gacompare command line end to end: the files it writes, their fields, and
 // its exit codes (0 success, 1 a run failed, 2 bad usage or input).
 #include "cli_run.hpp"
+#include "csv_fields.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -281,6 +282,93 @@ TEST(Cli, CheckWithoutOrWithABrokenBaselineExitsTwo) {
   EXPECT_NE(broken.err.find("projectile_linear_drag.json: cannot parse this baseline"), std::string::npos) << broken.err;
 }
 
+// check --max-time-ratio: a run against its own fresh baseline passes; a
+// baseline doctored to have run 100 times faster fails; one stored without its
+// repeats' times cannot be held to a ratio and says so.
+TEST(Cli, CheckMaxTimeRatioFailsOnASlowerRun) {
+  const fs::path dir = fresh_dir("check_time");
+  ASSERT_EQ(gacompare("check " + kScene + " --baseline " + dir.string() + " --update --repeat 3 --quiet").code, 0);
+  const std::string check = "check " + kScene + " --baseline " + dir.string() + " --repeat 3 --quiet --max-time-ratio ";
+  const Result same = gacompare(check + "5");
+  EXPECT_EQ(same.code, 0) << same.out;
+  EXPECT_NE(same.out.find("| time / baseline time |"), std::string::npos) << same.out;
+  const fs::path file = dir / "projectile_linear_drag.json";
+  json j = read_json(file);
+  for (auto& run : j["runs"])
+    for (auto& t : run["wall_seconds_each_repeat"]) t = t.get<double>() / 100;
+  write_text(file, j.dump());
+  const Result slower = gacompare(check + "5");
+  EXPECT_EQ(slower.code, 1) << slower.out;
+  EXPECT_NE(slower.out.find("the whole interval lies above 5"), std::string::npos) << slower.out;
+  for (auto& run : j["runs"]) run.erase("wall_seconds_each_repeat");
+  write_text(file, j.dump());
+  const Result old = gacompare(check + "5");
+  EXPECT_EQ(old.code, 1) << old.out;
+  EXPECT_NE(old.out.find("this baseline stores no repeats' times"), std::string::npos) << old.out;
+  EXPECT_EQ(gacompare("check " + kScene + " --baseline " + dir.string() + " --max-time-ratio 2").code, 2);  // 1 repeat
+}
+
+// gacompare diff on two real runs of the same scenes (times within noise,
+// states bit-identical: exit 0), then on a copy doctored to be slower in one
+// stage and on one doctored to have moved (exit 1 each).
+TEST(Cli, DiffPassesEqualRunsAndFailsASlowerStageOrAMovedState) {
+  const std::string data = std::string(GACOMPARE_DATA_DIR) + "/scenes/";
+  const std::string scenes = data + "tumbling_box.json " + kScene;
+  const fs::path a = fresh_dir("diff_a"), b = fresh_dir("diff_b");
+  ASSERT_EQ(gacompare("compare " + scenes + " --repeat 5 --quiet --out " + a.string()).code, 0);
+  ASSERT_EQ(gacompare("compare " + scenes + " --repeat 5 --quiet --out " + b.string()).code, 0);
+  // 3: the two runs share this machine minutes apart; a whole interval above
+  // 3x is a regression, not its load.
+  const Result equal = gacompare("diff " + a.string() + " " + b.string() + " --max-time-ratio 3");
+  EXPECT_EQ(equal.code, 0) << equal.out;
+  EXPECT_NE(equal.out.find("| tumbling_box | cga | `integrate` time, B / A |"), std::string::npos) << equal.out;
+  EXPECT_NE(equal.out.find("| tumbling_box | traditional | largest orientation difference, B − A (rad) | 0 |"),
+            std::string::npos)
+      << equal.out;
+  EXPECT_NE(equal.out.find("equal everywhere"), std::string::npos) << equal.out;
+  EXPECT_NE(equal.out.find("A: " + a.string()), std::string::npos) << equal.out;
+
+  // B's cga integrate 10x slower on tumbling_box.
+  const fs::path slow = fresh_dir("diff_slow");
+  fs::copy(a, slow, fs::copy_options::recursive);
+  json j = read_json(slow / "tumbling_box" / "results.json");
+  for (auto& t : j["runs"][1]["stages"]["integrate"]["seconds_each_repeat"]) t = t.get<double>() * 10;
+  write_text(slow / "tumbling_box" / "results.json", j.dump());
+  const Result slower = gacompare("diff " + a.string() + " " + slow.string() + " --max-time-ratio 3");
+  EXPECT_EQ(slower.code, 1) << slower.out;
+  EXPECT_NE(slower.out.find("| tumbling_box | cga | `integrate` time, B / A |"), std::string::npos);
+  EXPECT_NE(slower.out.find("**FAIL**: A "), std::string::npos) << slower.out;
+  EXPECT_EQ(gacompare("diff " + a.string() + " " + slow.string()).code, 0);  // time reported, not checked
+
+  // B's traditional box 1 µm higher at one sample: beyond the scene's 1e-9 m.
+  const fs::path moved = fresh_dir("diff_moved");
+  fs::copy(a / "tumbling_box" / "results.json", moved.string() + ".json");
+  j = read_json(moved.string() + ".json");
+  auto& z = j["runs"][0]["samples"][100]["bodies"]["box"]["position"][2];
+  z = z.get<double>() + 1e-6;
+  write_text(moved.string() + ".json", j.dump());
+  const std::string diff_moved = "diff " + (a / "tumbling_box" / "results.json").string() + " " + moved.string() + ".json";
+  const Result far = gacompare(diff_moved);
+  EXPECT_EQ(far.code, 1) << far.out;
+  EXPECT_NE(far.out.find("| tumbling_box | traditional | largest position difference, B − A (m) | 1e-06 | 1e-09 | **FAIL**: "
+                         "worst: body 'box'"),
+            std::string::npos)
+      << far.out;
+  EXPECT_EQ(gacompare(diff_moved + " --tolerance 1e-5").code, 0);
+
+  const Result missing = gacompare("diff " + a.string() + " /no/such/run");
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find("/no/such/run: no such results.json or report folder"), std::string::npos) << missing.err;
+  j = read_json(a / "tumbling_box" / "results.json");
+  j["scene"].erase("bodies");
+  write_text(moved.string() + ".json", j.dump());
+  const Result old = gacompare(diff_moved);
+  EXPECT_EQ(old.code, 2);
+  EXPECT_NE(old.err.find("/scene/bodies: missing (written before results.json carried it: run it again)"),
+            std::string::npos)
+      << old.err;
+}
+
 // The error columns of a sweep.md's table rows (all but the last four: time,
 // steps, f evals, Pareto mark): deterministic, unlike the times.
 std::string error_columns(const fs::path& md) {
@@ -296,15 +384,6 @@ std::string error_columns(const fs::path& md) {
   return out;
 }
 
-// One line of a CSV split at its commas.
-std::vector<std::string> fields(const std::string& line) {
-  std::vector<std::string> out(1);
-  for (char c : line) {
-    if (c == ',') out.emplace_back();
-    else out.back().push_back(c);
-  }
-  return out;
-}
 
 TEST(Cli, ShardedSweepMergesIntoTheUnshardedOneAndResumes) {
   const std::string sweep = "sweep " + std::string(GACOMPARE_DATA_DIR) +
@@ -351,12 +430,12 @@ TEST(Cli, SweepOfABodyMeasuresEveryErrorAndDrawsOrientation) {
   std::istringstream csv(read_text(dir / "sweep.csv"));
   std::string header, row;
   std::getline(csv, header);
-  const auto names = fields(header);
+  const auto names = csv_fields(header);
   for (const char* c : {"position_error", "orientation_error", "velocity_error", "angular_velocity_error"})
     EXPECT_NE(std::find(names.begin(), names.end(), c), names.end()) << c << " in " << header;
   int rows = 0;
   while (std::getline(csv, row)) {
-    const auto f = fields(row);
+    const auto f = csv_fields(row);
     ASSERT_EQ(f.size(), names.size()) << row;
     auto at = [&](const char* c) { return std::stod(f[std::find(names.begin(), names.end(), c) - names.begin()]); };
     EXPECT_EQ(at("position_error"), 0.0);  // the racket spins about its fixed centre
