@@ -93,7 +93,16 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
   const std::vector<CheckLine> sanity = sanity_checks(r);
   for (const auto& w : sanity_warnings(sanity)) o << "**WARNING, physical sanity:** " << w << "\n\n";
 
-  o << "## Stage times\n\n| stage |";
+  bool gaps = false, bullet = false;  // a stage one backend ran and another did not
+  for (const auto& b : r.backends) bullet = bullet || b.run.backend == "bullet";
+  for (int k = 0; k < core::kStageCount; ++k)
+    for (const auto& b : r.backends)
+      gaps = gaps || (b.run.profile.ran(static_cast<Stage>(k)) != r.backends.front().run.profile.ran(static_cast<Stage>(k)));
+  o << "## Stage times\n\n";
+  if (gaps)
+    o << "A dash: the backend has no such stage"
+      << (bullet ? " (Bullet finds and answers contacts inside its own step, all timed as `integrate`)" : "") << ".\n\n";
+  o << "| stage |";
   for (const auto& b : r.backends) o << " " << b.run.backend << " | calls | share |";
   const BackendResult* trad = find(r, "traditional");
   const BackendResult* cga = find(r, "cga");
@@ -110,13 +119,22 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
     if (!any) continue;
     o << "| `" << core::stage_name(s) << "` |";
     for (const auto& b : r.backends) {
+      if (!b.run.profile.ran(s)) {  // Bullet has no time of impact: not "0 (0–0) 0%"
+        o << " – | – | – |";
+        continue;
+      }
       const double share = b.run.profile.total_seconds() > 0
                                ? spread(stage_seconds(b, s)).median / spread(total_seconds(b)).median
                                : 0;
       o << " " << time_cell(stage_seconds(b, s)) << " | " << b.run.profile[s].calls << " | "
         << fmt("%.0f%%", 100 * share) << " |";
     }
-    if (ratio) o << " " << ratio_cell(paired_ratio(stage_seconds(*cga, s), stage_seconds(*trad, s))) << " |";
+    if (ratio)
+      o << " "
+        << (cga->run.profile.ran(s) && trad->run.profile.ran(s)
+                ? ratio_cell(paired_ratio(stage_seconds(*cga, s), stage_seconds(*trad, s)))
+                : std::string("–"))
+        << " |";
     o << "\n";
   }
   o << "| **all stages** |";
