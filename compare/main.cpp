@@ -239,11 +239,14 @@ nlohmann::ordered_json sweep_manifest(const core::Scene& scene, const compare::S
   return {{"scene_file", fs::absolute(scene.file).string()}, {"scene_sha256", scene.sha256},
           {"repeats", spec.repeats}, {"max_duration", spec.max_duration},
           {"error", spec.error ? std::string(compare::measure_name(*spec.error)) : std::string("default")},
-          {"units", ids}};
+          {"build", spec.build}, {"units", ids}};
 }
 
+// The units' cells that are done with this key; `missing` counts the others,
+// `stale` those of them whose cell is there but was written with another key
+// or format (compare/sweep.hpp, cell_key): they are run again.
 std::vector<nlohmann::json> read_units(const fs::path& cells, const std::vector<compare::Unit>& units,
-                                       const std::string& sha, std::size_t& missing) {
+                                       const nlohmann::json& key, std::size_t& missing, std::size_t* stale = nullptr) {
   std::vector<nlohmann::json> out;
   missing = 0;
   for (const auto& u : units) {
@@ -255,8 +258,9 @@ std::vector<nlohmann::json> read_units(const fs::path& cells, const std::vector<
     }
     try {
       auto j = nlohmann::json::parse(in);
-      if (!compare::cell_is_current(j, sha)) {  // another scene, or an older format: run it again
+      if (!compare::cell_is_current(j, key)) {  // other settings, another build or format: run it again
         ++missing;
+        if (stale) ++*stale;
         continue;
       }
       out.push_back(std::move(j));
@@ -275,12 +279,14 @@ int run_sweep(const core::Scene& scene, const compare::SweepSpec& spec, const fs
   fs::create_directories(cells);
   compare::write_file_atomically(out / "sweep.json", sweep_manifest(scene, spec, units).dump(1) + "\n");
   std::optional<core::Run> reference;
+  const nlohmann::json key = compare::cell_key(swept, spec);
   int ran = 0, skipped = 0;
+  std::size_t stale = 0;
   for (std::size_t k = 0; k < units.size(); ++k) {
     if (static_cast<int>(k % static_cast<std::size_t>(shard.second)) != shard.first) continue;
     const fs::path f = cells / (units[k].id + ".json");
     std::size_t missing = 0;
-    if (!read_units(cells, {units[k]}, swept.sha256, missing).empty()) {  // done before: resume
+    if (!read_units(cells, {units[k]}, key, missing, &stale).empty()) {  // done before: resume
       ++skipped;
       continue;
     }
@@ -289,10 +295,11 @@ int run_sweep(const core::Scene& scene, const compare::SweepSpec& spec, const fs
     compare::write_file_atomically(f, compare::run_unit(units[k], swept, *reference, spec).dump(1) + "\n");
     ++ran;
   }
-  std::cerr << "gacompare: sweep " << scene.name << ": ran " << ran << " unit(s), skipped " << skipped
-            << " already done\n";
+  std::cerr << "gacompare: sweep " << scene.name << ": ran " << ran << " unit(s)"
+            << (stale ? " (" + std::to_string(stale) + " done before with other settings, another build or format)" : "")
+            << ", skipped " << skipped << " already done\n";
   std::size_t missing = 0;
-  const auto done = read_units(cells, units, swept.sha256, missing);
+  const auto done = read_units(cells, units, key, missing);
   if (missing == 0) compare::write_sweep_report(out, swept, done, spec);
   else std::cerr << "gacompare: sweep " << scene.name << ": " << missing << " unit(s) of other shards still to run; "
                  << "join the shards with gacompare merge\n";
@@ -312,7 +319,8 @@ int merge_sweeps(const std::vector<std::string>& dirs, const fs::path& out) {
       throw input_error(d + "/sweep.json: cannot parse: " + e.what());
     }
     if (manifest.is_null()) manifest = m;
-    else if (m != manifest) throw input_error(d + ": a different sweep (scene, settings or units) than " + dirs.front());
+    else if (m != manifest)
+      throw input_error(d + ": a different sweep (scene, settings, build or units) than " + dirs.front());
   }
   const core::Scene scene = core::load_scene(manifest.at("scene_file").get<std::string>());
   if (scene.sha256 != manifest.at("scene_sha256"))
@@ -329,9 +337,10 @@ int merge_sweeps(const std::vector<std::string>& dirs, const fs::path& out) {
   spec.repeats = manifest.at("repeats");
   spec.max_duration = manifest.at("max_duration");
   spec.error = compare::measure_from_string(manifest.value("error", "default"));  // the shards' --error
+  spec.build = manifest.value("build", "");  // the shards' build, not this one's
   const core::Scene swept = compare::swept_scene(scene, spec);
   std::size_t missing = 0;
-  const auto done = read_units(out / "cells", units, swept.sha256, missing);
+  const auto done = read_units(out / "cells", units, compare::cell_key(swept, spec), missing);
   if (missing) throw run_error(out.string() + ": " + std::to_string(missing) + " unit(s) missing from the shards given");
   compare::write_sweep_report(out, swept, done, spec);
   std::cout << out.string() << "\n";
@@ -574,6 +583,7 @@ int main(int argc, char** argv) {
       std::tie(spec.tol_from, spec.tol_to) = parse_tolerances(sw_tol);
       std::tie(spec.dt_from, spec.dt_halvings) = parse_steps(sw_steps);
       spec.repeats = sw_repeat;
+      spec.build = compare::build_info().commit;
       spec.max_duration = sw_max_duration;
       spec.peer = !sw_no_peer;
       if (!sw_error.empty()) spec.error = compare::measure_from_string(sw_error);

@@ -464,9 +464,29 @@ TEST(Cli, SweepOfABodyMeasuresEveryErrorAndDrawsOrientation) {
     write_text(e.path(), cell.dump());
     break;
   }
-  EXPECT_NE(gacompare(sweep + dir.string()).err.find("ran 1 unit(s), skipped 1"), std::string::npos);
+  EXPECT_NE(gacompare(sweep + dir.string()).err.find("ran 1 unit(s) (1 done before with other settings, another build "
+                                                     "or format), skipped 1"),
+            std::string::npos);
 
   EXPECT_EQ(gacompare("sweep " + kScene + " --error orientation --out " + fresh_dir("bad_error").string()).code, 2);
+}
+
+// A cell is keyed by everything that changes it (compare/sweep.hpp, cell_key):
+// a resumed sweep with another --max-duration or --repeat runs it again
+// instead of mixing it in.
+TEST(Cli, SweepCellsWithOtherSettingsRunAgain) {
+  const fs::path dir = fresh_dir("sweep_keys");
+  const std::string sweep = "sweep " + std::string(GACOMPARE_DATA_DIR) +
+                            "/scenes/kepler.json --solvers rk4 --steps 1e-2:0 --no-peer --quiet --out " + dir.string();
+  EXPECT_NE(gacompare(sweep + " --repeat 1").err.find("ran 1 unit(s), skipped 0"), std::string::npos);
+  EXPECT_NE(gacompare(sweep + " --repeat 1").err.find("ran 0 unit(s), skipped 1"), std::string::npos);
+  const std::string again = " (1 done before with other settings, another build or format), skipped 0";
+  EXPECT_NE(gacompare(sweep + " --repeat 2").err.find("ran 1 unit(s)" + again), std::string::npos);
+  const Result cut = gacompare(sweep + " --repeat 2 --max-duration 1");
+  EXPECT_NE(cut.err.find("ran 1 unit(s)" + again), std::string::npos) << cut.err;
+  const json cell = read_json(dir / "cells" / "rk4-dt0.01.json");
+  EXPECT_EQ(cell["key"]["repeats"], 2);
+  EXPECT_EQ(cell["key"]["duration"], 1.0);
 }
 
 TEST(Cli, SweepRejectsBadSpecs) {
