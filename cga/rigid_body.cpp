@@ -68,6 +68,13 @@ RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vecto
   return m;
 }
 
+RigidBodies::Model RigidBodies::subset(const Model& m, std::span<const int> which) {
+  Model out;
+  out.renormalise = m.renormalise;
+  core::copy_bodies(m, which, out);
+  return out;
+}
+
 void RigidBodies::initial_state(const Model& m, std::span<double> y) {
   std::copy(m.y0.begin(), m.y0.end(), y.begin());
 }

@@ -95,6 +95,15 @@ RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vecto
   return m;
 }
 
+RigidBodies::Model RigidBodies::subset(const Model& m, std::span<const int> which) {
+  Model out;
+  out.rotation = m.rotation;
+  out.renormalise = m.renormalise;
+  out.stride = m.stride;
+  core::copy_bodies(m, which, out);
+  return out;
+}
+
 void RigidBodies::initial_state(const Model& m, std::span<double> y) {
   std::copy(m.y0.begin(), m.y0.end(), y.begin());
 }
