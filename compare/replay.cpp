@@ -93,6 +93,10 @@ constexpr const char* kViewer = R"JS(
   "use strict";
   const data = JSON.parse(document.getElementById("replay-data").textContent);
   const nb = data.bodies.length, np = data.particles.length, nf = data.times.length;
+  if (!nf) {
+    document.getElementById("views").textContent = "No samples were recorded: nothing to replay.";
+    return;
+  }
   const palette = [0xd1495b, 0x2e86ab, 0xedae49, 0x66a182, 0x8f5dc2, 0xf17f29, 0x00798c, 0xc2185b];
   const colour = (i) => palette[i % palette.length];
 
