@@ -72,7 +72,7 @@ class StateBounds {
   std::array<Worst, 4> worst_;
 };
 
-// A time ratio, after / before, with its 95% interval (bootstrap_unpaired_ratio)
+// A time ratio, after / before, of the medians, with its 95% interval (bootstrap_unpaired_ratio)
 // in the note and "within noise" when it holds 1. Held to `max_ratio` when one
 // is given: it fails when the interval lies wholly above it or when there is
 // none (`why_none` says why, else "fewer than 2 repeats"); without one it is an
@@ -89,8 +89,8 @@ nlohmann::ordered_json baseline_json(const SceneResult& r);
 
 // The checks of one scene; `baseline` is the stored baseline (nullopt: none kept).
 // Time against the baseline is an info line, unless `max_time_ratio` R is
-// given: then it fails when the 95% interval of time / baseline time (wall
-// time per repeat, bootstrap_unpaired_ratio: the baseline's repeats and these
+// given: then it fails when the 95% interval of time / baseline time (median
+// wall time per repeat, bootstrap_unpaired_ratio: the baseline's repeats and these
 // did not run side by side) lies above R, or when there is no interval (one
 // repeat, or a baseline stored without its repeats' times).
 std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlohmann::json>& baseline,

@@ -142,15 +142,13 @@ void diff_scene(const RunFile& a, const RunFile& b, const DiffOptions& options, 
       }
       const auto ta = repeat_seconds(run_a, stage), tb = repeat_seconds(*run_b, stage);
       CheckLine l = time_ratio_line(name, backend, what, ta, tb, options.max_time_ratio);
-      // The ratio is of means (what the interval is of); the medians beside
-      // them show where one slow repeat pulled a mean.
+      // The ratio is of medians (what the interval is of), with each side's
+      // spread: a slow repeat shows as a max far from its median.
       const auto times = [](const std::vector<double>& t) {
-        double sum = 0;
-        for (double x : t) sum += x;
-        return format_seconds(t.empty() ? 0 : sum / static_cast<double>(t.size())) + " mean, " +
-               format_seconds(spread(t).median) + " median";
+        const Spread sp = spread(t);
+        return format_seconds(sp.median) + " (" + format_seconds(sp.min) + "–" + format_seconds(sp.max) + ")";
       };
-      l.note = "A " + times(ta) + "; B " + times(tb) + "; " + l.note;
+      l.note = "A " + times(ta) + ", B " + times(tb) + "; " + l.note;
       out.push_back(std::move(l));
     }
     // State: B's samples against A's, pair by pair.

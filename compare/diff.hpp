@@ -1,11 +1,11 @@
 #pragma once
 // `gacompare diff A B`: two runs, or the same scenes at two commits, compared
 // from what they wrote (results.json), nothing run again. Per scene, backend
-// and stage (and all stages together) the time ratio B / A with its 95%
-// interval: A's repeats and B's did not run side by side, so the interval is
-// the two-sample bootstrap's (compare/stats.hpp, bootstrap_unpaired_ratio),
-// not the paired one the reports use between backends. "Within noise" when it
-// holds 1. And per scene and backend the largest state difference between A's
+// and stage (and all stages together) the time ratio B / A of the median
+// times per repeat, with its 95% interval: A's repeats and B's did not run side
+// by side, so the interval is the two-sample bootstrap's (compare/stats.hpp,
+// bootstrap_unpaired_ratio, which says why medians), not the paired one the
+// reports use between backends. "Within noise" when it holds 1. And per scene and backend the largest state difference between A's
 // and B's samples, measured as `check` measures one (compare/check.hpp,
 // StateBounds: no point of a body may move by more than d).
 #include "compare/check.hpp"

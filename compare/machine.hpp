@@ -19,7 +19,9 @@ struct MachineInfo {
   std::string compiler;  // compiler id and version this binary was built with
   std::string date;      // UTC, ISO 8601
   std::string build_type;
-  std::string flags;     // the C++ flags of this build (CMAKE_CXX_FLAGS and the build type's)
+  // From here on with default initialisers, so MachineInfo{cpu, compiler, date,
+  // build_type} stays free of missing-initialiser warnings.
+  std::string flags{};   // the C++ flags of this build (CMAKE_CXX_FLAGS and the build type's)
   int logical_cpus = 0;  // online (std::thread::hardware_concurrency), 0 when unknown
   int usable_cpus = 0;   // in this process's affinity mask (what a run may use), 0 when unknown
   // The 1, 5 and 15 minute load averages (getloadavg) when this record was
@@ -27,7 +29,7 @@ struct MachineInfo {
   // one at its end (which includes it: about 1 on an otherwise idle machine).
   std::array<double, 3> load_average{-1, -1, -1};
   std::array<double, 3> load_average_end{-1, -1, -1};
-  BuildInfo build;
+  BuildInfo build{};
 };
 
 // Taken now: the date, the load averages (both) and everything else.
