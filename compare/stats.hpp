@@ -165,8 +165,8 @@ inline RatioInterval bootstrap_ratio(std::span<const PairedRepeats> scenes, int 
 // noise, true ratio 1, 4,000 resamples): it held the ratio 90%, 99.6% and 99.6%
 // of the time with 3, 5 and 9 repeats each; with one repeat of 9 made 20
 // times slower its interval stayed as narrow (mean log width 0.17 against 0.15)
-// where the ratio of means' widened fifteenfold (2.3), and it still found a
-// true 1.3 every time. With 5 repeats one such outlier widens either interval
+// where the ratio of means' widened twentyfold (2.3 against 0.11), and it
+// still found a true 1.3 every time (the means' never). With 5 repeats one such outlier widens either interval
 // past use: run 9 or more on a loaded machine. Drift between the two runs
 // (another load, another machine) is not noise this interval can see: it
 // reads as a real difference, which it is for the runs compared. NaN ends with
