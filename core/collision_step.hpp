@@ -39,6 +39,7 @@
 #include "core/islands.hpp"
 #include "core/ode.hpp"
 #include "core/simulator.hpp"
+#include "core/time_of_impact.hpp"
 
 #include <algorithm>
 #include <sstream>
@@ -228,70 +229,90 @@ class CollisionStep {
   }
 
   // §2.5.1's search, on one island: a time t* in (t, tb) where the deepest
-  // contact of the pairs in `d` is in (0, tol], re-integrating the island from
-  // (t, yb) for every trial time: bisection (§2.5.1) or Illinois regula falsi
-  // on the depth (§4.3's "more advanced methods"). ys holds the state at tb
-  // and, on return, the state at the accepted time, which it returns.
+  // contact of the pairs in `d` is in (0, tol] (core/time_of_impact.hpp). The
+  // trial poses come from re-integrating the island from (t, yb) for every
+  // trial time (impact_motion "integrate", §2.5.1), or from interpolating the
+  // pairs' bodies between yb and ys in the backend's algebra (§4.3.2's
+  // "alternative to recalculating the entire system motion many times"); then
+  // the island is integrated once, to the time found, and the search goes on
+  // over the true motion from the bracket found if that time is not in the
+  // band. ys holds the state at tb and, on return, the state at the accepted
+  // time, which it returns.
   double impact(Alone& a, const Detection& d, double t, const std::vector<double>& yb, double tb,
                 std::vector<double>& ys, Profile& profile) const {
     const auto& setup = c_.setup;
     ScopedStage timed(profile, Stage::time_of_impact);
     Profile inner;  // the search's integration and narrowphase count as time of impact
-    const double tol = setup.settings.penetration_tolerance;
+    ++c_.counters.impact_searches;
     std::vector<std::pair<int, int>> pairs;
     for (const auto& hit : d.hits) pairs.emplace_back(hit.a, hit.b);
+    const ImpactSearch how{setup.settings.time_of_impact, setup.settings.penetration_tolerance,
+                           closing_speed(a, pairs, yb, ys, tb - t)};
     std::vector<double> ym;
-    const auto at = [&](double tm) {
+    const auto integrated = [&](double tm) {
       ym = yb;
       a.integrate(t, tm, ym, inner);
       ++c_.counters.impact_evaluations;
+      ++c_.counters.impact_iterations;
       return c_.depth_of(a.model, ym, a.world, pairs, inner);
     };
-    ++c_.counters.impact_searches;
-    double lo = t, hi = tb, g_lo = c_.depth_of(a.model, yb, a.world, pairs, inner), g_hi = d.max_depth;
-    // Illinois steers to a depth near the top of the band: the later the
-    // accepted time, the more a search advances (a resting body sinks
-    // ½ g h² per step, more than a tight tolerance, and needs one search
-    // per (tol − depth) it may sink).
-    const double aim = tol - 0.2 * (tol - std::max(g_lo, 0.0));
-    int side = 0;  // Illinois: which end was kept last (−1 lo, +1 hi)
-    double f_lo = g_lo - aim, f_hi = g_hi - aim;
-    bool found = false;
-    double t_star = tb;
+    const double g_lo = c_.depth_of(a.model, yb, a.world, pairs, inner);
     // Already deeper than the tolerance at t (a correction pushed one body
     // into a third): no earlier time can be in the band; don't search.
-    const bool searchable = g_lo <= tol;
-    for (int it = 0; searchable && it < kMaxImpactIterations && !found; ++it) {
-      ++c_.counters.impact_iterations;
-      double tm = 0.5 * (lo + hi);
-      if (setup.settings.time_of_impact == TimeOfImpact::illinois) {
-        const double secant = hi - f_hi * (hi - lo) / (f_hi - f_lo);
-        if (secant > lo && secant < hi) tm = secant;
-      }
-      const double gm = at(tm);
-      if (gm > tol) {
-        hi = tm, g_hi = gm, f_hi = gm - aim;
-        if (side == +1) f_lo *= 0.5;  // Illinois: the same end kept twice
-        side = +1;
-      } else if (gm > 0) {
-        found = true;
-        t_star = tm;
+    Searched r;
+    if (g_lo <= how.tol) {
+      if (setup.settings.impact_motion == ImpactMotion::integrate) {
+        r = search_impact(how, integrated, t, tb, g_lo, d.max_depth);
       } else {
-        lo = tm, g_lo = gm, f_lo = gm - aim;
-        if (side == -1) f_hi *= 0.5;
-        side = -1;
+        const auto interpolated = [&](double tm) {
+          ++c_.counters.impact_interpolations;
+          ++c_.counters.impact_iterations;
+          const double s = (tm - t) / (tb - t);
+          return c_.depth_at(a.world, pairs, [&](int k) {
+            return Bodies::interpolated_pose(a.model, yb, ys, static_cast<std::size_t>(k), s);
+          }, inner);
+        };
+        r = search_impact(how, interpolated, t, tb, g_lo, d.max_depth);
+        double lo = t, hi = tb, glo = g_lo, ghi = d.max_depth;
+        if (r.found) {
+          const double g = integrated(r.t);  // the true state there
+          if (!(g > 0 && g <= how.tol)) {
+            ++c_.counters.impact_interpolation_misses;
+            (g > how.tol ? hi : lo) = r.t;
+            (g > how.tol ? ghi : glo) = g;
+            r.found = false;
+          }
+        }
+        if (!r.found) r = search_impact(how, integrated, lo, hi, glo, ghi);
       }
     }
     // No time in the band, or one so close to t that the search would make
     // no progress (Zeno): take the whole sub-step; response and correction
     // resolve the depth. Progress is then always at least one sub-step.
-    if (found && t_star - t <= 1e-6 * (tb - t)) found = false;
-    if (!found) {
+    if (r.found && r.t - t <= 1e-6 * (tb - t)) r.found = false;
+    if (!r.found) {
       ++c_.counters.unresolved_searches;
       return tb;  // ys already holds the state at tb
     }
     ys.swap(ym);
-    return t_star;
+    return r.t;
+  }
+
+  // Conservative advancement's bound of how fast the pairs' depth can grow:
+  // the largest sum of the two bodies' rim speeds, each the larger at the
+  // interval's two ends plus what gravity adds over it.
+  double closing_speed(const Alone& a, const std::vector<std::pair<int, int>>& pairs, const std::vector<double>& yb,
+                       const std::vector<double>& ys, double h) const {
+    if (c_.setup.settings.time_of_impact != TimeOfImpact::conservative_advancement) return 0;
+    const auto rim = [&](int k) {
+      const auto b = static_cast<std::size_t>(k);
+      if (c_.setup.is_static[a.world[b]]) return 0.0;
+      return std::max(c_.rim_speed(a.model, yb, a.world, b), c_.rim_speed(a.model, ys, a.world, b)) +
+             c_.setup.gravity * h;
+    };
+    double most = 0;
+    for (const auto& [i, j] : pairs) most = std::max(most, rim(i) + rim(j));
+    return most;
   }
 };
 

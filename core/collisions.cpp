@@ -15,6 +15,8 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["impact_iterations"] = impact_iterations;
   out["impact_state_evaluations"] = impact_evaluations;
   out["impact_searches_unresolved"] = unresolved_searches;
+  out["impact_interpolated_evaluations"] = impact_interpolations;
+  out["impact_interpolation_misses"] = impact_interpolation_misses;
   out["contacts"] = contacts;
   out["resting_contacts"] = resting_contacts;
   out["impulses"] = impulses;

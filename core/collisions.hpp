@@ -55,6 +55,7 @@
 #include "core/rigid_body.hpp"
 #include "core/scene.hpp"
 #include "core/stage.hpp"
+#include "core/time_of_impact.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -85,11 +86,11 @@ inline constexpr int kMaxSweeps = 1000;
 // 0.59 and 0.78 s of run time (traditional; warm starting keeps it to
 // ~35 sweeps a step).
 inline constexpr double kVelocityTolerance = 1e-11;
-inline constexpr int kMaxImpactIterations = 60;  // time-of-impact trials per search (2⁻⁶⁰ of a step)
 
 struct CollisionCounters {
   std::uint64_t steps = 0, shortened_steps = 0, broadphase_candidates = 0, narrowphase_pairs = 0;
   std::uint64_t impact_searches = 0, impact_iterations = 0, impact_evaluations = 0, unresolved_searches = 0;
+  std::uint64_t impact_interpolations = 0, impact_interpolation_misses = 0;  // impact_motion "interpolate"
   std::uint64_t contacts = 0, impulses = 0, resting_contacts = 0, sweeps = 0, corrections = 0;
   std::uint64_t warm_started = 0, sweep_cap_hits = 0, correction_cap_hits = 0, unresolved_impacts = 0;
   // Islands (core/islands.hpp, core/collision_step.hpp): the islands with a
@@ -244,28 +245,37 @@ struct Collider {
 
   // The deepest separating-axis depth among the given pairs of the group (the
   // time-of-impact function: continuous in time, unlike the feature test's
-  // yes/no).
+  // yes/no), at state y, or with each body placed by pose_of(k).
   double depth_of(const Model& m, std::span<const double> y, World world, const std::vector<std::pair<int, int>>& pairs,
                   Profile& profile) const {
+    return depth_at(world, pairs, [&](int k) { return Bodies::pose(m, y, static_cast<std::size_t>(k)); }, profile);
+  }
+  template <class PoseOf>
+  double depth_at(World world, const std::vector<std::pair<int, int>>& pairs, PoseOf&& pose_of, Profile& profile) const {
     ScopedStage timed(profile, Stage::narrowphase);
     double g = -INFINITY;
     for (const auto& [i, j] : pairs)
     {  // few pairs, each body in one or two: their poses only
-      const collision::Placed a{setup.meshes[world[i]].get(), Bodies::pose(m, y, i)};
-      const collision::Placed b{setup.meshes[world[j]].get(), Bodies::pose(m, y, j)};
+      const collision::Placed a{setup.meshes[world[i]].get(), pose_of(i)};
+      const collision::Placed b{setup.meshes[world[j]].get(), pose_of(j)};
       const Vec3 o = collision::local_origin(a, b);
       g = std::max(g, collision::separating_axis(NarrowBody(a, o), NarrowBody(b, o)).depth);
     }
     return g;
   }
 
+  // How fast body k's rim can move: |v| + ρ|ω|, ρ its bounding radius.
+  double rim_speed(const Model& m, std::span<const double> y, World world, std::size_t k) const {
+    if (setup.is_static[world[k]]) return 0;
+    const auto mo = Bodies::motion(m, y, k);
+    return Bodies::speed(mo) + setup.sphere_radius[world[k]] * Bodies::angular_speed(mo);
+  }
+
   // How far body k of the group can move in h: a point at distance ρ from the
   // centre moves at most (|v| + ρ|ω|) h, and gravity adds ½ g h². 0 when static.
   double reach(const Model& m, std::span<const double> y, World world, std::size_t k, double h) const {
     if (setup.is_static[world[k]]) return 0;
-    const auto mo = Bodies::motion(m, y, k);
-    const double rim = Bodies::speed(mo) + setup.sphere_radius[world[k]] * Bodies::angular_speed(mo);
-    return rim * h + 0.5 * setup.gravity * h * h;
+    return rim_speed(m, y, world, k) * h + 0.5 * setup.gravity * h * h;
   }
 
   // How long a step of the group may be: no body moves more than half the
@@ -467,9 +477,23 @@ struct Collider {
     if (std::find(correct.begin(), correct.end(), 1) == correct.end()) return;
     std::vector<int> points(correct.size(), 0);
     for (const auto& r : rows) ++points[r.hit];
+    // A face's rows act at the centres along one normal: the same row, whose
+    // target is the deepest corner's (four copies with their own targets are
+    // the same problem, solved slowly: the copies fight over one degree of
+    // freedom, and no exact step can satisfy them all).
+    std::vector<int> face_row(correct.size(), -1);
     for (const auto& r : rows) {
-      Row p = r;
+      const double target = correct[r.hit] ? std::max(0.0, r.depth - 0.25 * tol) : 0.0;
       if (points[r.hit] >= 3) {  // a face: at the centres, no turn
+        if (face_row[r.hit] >= 0) {
+          Row& q = fix[static_cast<std::size_t>(face_row[r.hit])];
+          q.target = std::max(q.target, target);
+          continue;
+        }
+        face_row[r.hit] = static_cast<int>(fix.size());
+      }
+      Row p = r;
+      if (points[r.hit] >= 3) {
         const auto& ma = motion[r.sa];
         const auto& mb = motion[r.sb];
         p.arm_a = Bodies::arm(ma, Bodies::position(ma), r.n);
@@ -477,7 +501,7 @@ struct Collider {
         p.k = Bodies::inverse_effective_mass(ma, p.arm_a) + Bodies::inverse_effective_mass(mb, p.arm_b);
       }
       p.lambda = 0;
-      p.target = correct[r.hit] ? std::max(0.0, r.depth - 0.25 * tol) : 0.0;
+      p.target = target;
       fix.push_back(p);
     }
     Motions pseudo;
