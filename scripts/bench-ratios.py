@@ -69,8 +69,13 @@ def main():
                             for c in counters)
             print(f"| {op} | {impl} | {cell} | {ratio} |" + extra)
     machine = data.get("context", {})
+    # Google Benchmark's "library_build_type" is how Debian built libbenchmark
+    # (debug), not how this project's benchmarks were built: said so, since
+    # "library build debug" read as a debug build of the code being timed.
     print(f"\n{machine.get('num_cpus', '?')} CPUs at {machine.get('mhz_per_cpu', '?')} MHz, "
-          f"library build {machine.get('library_build_type', '?')}, date {machine.get('date', '?')}.")
+          f"date {machine.get('date', '?')}; the benchmarks are this project's build, linked to Debian's "
+          f"Google Benchmark library (itself a {machine.get('library_build_type', '?')} build: it does the timing, "
+          f"and is not timed).")
     return 0
 
 
