@@ -57,6 +57,9 @@ CollisionSetup collision_setup(const Scene& scene) {
     s.min_inradius = std::min(s.min_inradius, inradius);
     s.restitution.push_back(body.restitution ? *body.restitution : s.settings.restitution);
     s.is_static.push_back(body.is_static);
+    const Aabb box = aabb_of(std::span<const Vec3>(s.meshes.back()->vertices()));
+    s.static_mid.push_back(0.5 * (box.min + box.max));
+    s.static_half.push_back(0.5 * (box.max - box.min));
     s.everyone.push_back(static_cast<int>(s.everyone.size()));
   }
   return s;

@@ -111,6 +111,11 @@ struct CollisionSetup {
   std::vector<Vec3> sphere_centre;  // body frame
   std::vector<double> sphere_radius, inradius, restitution;
   std::vector<char> is_static;
+  // A static body's box in its own frame (the mesh's bounding box, centre and
+  // half sides): the broadphase's spheres are loose about a slab or a wall, so
+  // a pair with a static body is kept only where the other body's sphere
+  // reaches this box (Collider::reaches_static).
+  std::vector<Vec3> static_mid, static_half;
   std::vector<int> everyone;  // 0 … n − 1: the world as a group (see Collider)
   SolverSpec solver;          // the scene's: an island is integrated alone with it
   double gravity = 0;       // |g|
@@ -219,6 +224,17 @@ struct Collider {
                                    : Broadphase<Spheres>(BroadphaseMethod::sweep).find(centres, radii, fixed, margin);
       pairs = std::move(found.pairs);
       d.candidates = std::move(found.candidates);
+      const auto away = [&](std::span<const double> grow) {
+        return [&, grow](const std::pair<int, int>& p) {
+          const auto [i, j] = p;
+          if (fixed[i] == fixed[j]) return false;
+          const int s = fixed[i] ? i : j, o = fixed[i] ? j : i;
+          const double r = radii[o] + (grow.empty() ? 0.0 : grow[o]);
+          return !reaches_static(pose[s], world[s], centres[o], r);
+        };
+      };
+      std::erase_if(pairs, away({}));
+      std::erase_if(d.candidates, away(margin));
       counters.broadphase_candidates += static_cast<std::uint64_t>(found.counters.candidates);
       counters.broadphase_tree_updates += static_cast<std::uint64_t>(found.counters.tree_updates);
       counters.broadphase_pairs_kept += static_cast<std::uint64_t>(found.counters.pairs_kept);
@@ -237,6 +253,20 @@ struct Collider {
       d.hits.push_back(std::move(h));
     }
     return d;
+  }
+
+  // Whether a sphere (centre c, radius r, world) reaches static body s's box
+  // placed by its pose: the box point nearest c within r, padded by the
+  // touching band and the rounding of the coordinates, so that no pair the
+  // narrowphase would call touching is dropped. Algebra-neutral, like the
+  // AABB tree: a filter on which pairs are tested, not a part of either
+  // backend's geometry.
+  bool reaches_static(const collision::Pose& pose, int s, const Vec3& c, double r) const {
+    const Vec3 q = pose.rotation.transpose() * (c - pose.position) - setup.static_mid[s];
+    const Vec3 h = setup.static_half[s];
+    const Vec3 out = (q.cwiseAbs() - h).cwiseMax(0.0);
+    const double pad = collision::kTouchingBand * (r + h.norm()) + 1e-14 * (c - pose.position).norm();
+    return out.squaredNorm() <= (r + pad) * (r + pad);
   }
 
   // The deepest separating-axis depth among the given pairs of the group (the
