@@ -156,7 +156,8 @@ template <class Body>
 void point_in_body(benchmark::State& st) {
   // A 64-vertex-ish hull against the vertices of another: one vertex per item.
   const auto& k = corpus().cases.front();
-  const Body a(k.a(), Eigen::Vector3d::Zero()), b(k.b(), Eigen::Vector3d::Zero());
+  const typename Body::Shape sa(k.a()), sb(k.b());
+  const Body a(sa, sa.position()), b(sb, sb.position());
   const int n = static_cast<int>(k.mesh_b->vertices().size());
   int j = 0;
   for (auto _ : st) {

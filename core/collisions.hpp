@@ -47,6 +47,7 @@
 #include "core/collision.hpp"
 #include "core/error.hpp"
 #include "core/narrowphase.hpp"
+#include "core/pair_memory.hpp"
 #include "core/rigid_body.hpp"
 #include "core/scene.hpp"
 #include "core/stage.hpp"
@@ -187,11 +188,16 @@ struct Collider {
     const auto method = setup.settings.method == ContactMethod::report ? collision::Method::sat_then_report
                                                                        : collision::Method::sat_then_manifold;
     Detection d;
+    ++detection_;
+    hints_.next();
     for (const auto& [i, j] : pairs.pairs) {
       if (setup.is_static[i] && setup.is_static[j]) continue;
       ++counters.narrowphase_pairs;
       PairHit h{i, j, {}, {}};
-      h.sat = collision::narrowphase<NarrowBody>(placed(pose, i), placed(pose, j), method, &h.features);
+      collision::SatHint hint = hints_.recall(i, j);
+      h.sat = collision::narrowphase<NarrowBody>(shape(i, [&] { return pose[i]; }), shape(j, [&] { return pose[j]; }),
+                                                 method, &h.features, &hint);
+      hints_.keep(i, j, hint);
       if (!h.sat.intersect) continue;
       d.max_depth = std::max(d.max_depth, h.sat.depth);
       d.hits.push_back(std::move(h));
@@ -205,12 +211,12 @@ struct Collider {
                   Profile& profile) const {
     ScopedStage timed(profile, Stage::narrowphase);
     double g = -INFINITY;
-    for (const auto& [i, j] : pairs)
-    {  // few pairs, each body in one or two: their poses only
-      const collision::Placed a{setup.meshes[i].get(), Bodies::pose(m, y, i)};
-      const collision::Placed b{setup.meshes[j].get(), Bodies::pose(m, y, j)};
-      const Vec3 o = collision::local_origin(a, b);
-      g = std::max(g, collision::separating_axis(NarrowBody(a, o), NarrowBody(b, o)).depth);
+    ++detection_;
+    for (const auto& [i, j] : pairs) {  // few pairs, each body in one or two: their poses only
+      const Shape& a = shape(i, [&] { return Bodies::pose(m, y, i); });
+      const Shape& b = shape(j, [&] { return Bodies::pose(m, y, j); });
+      const Vec3 o = collision::local_origin(a.position(), b.position());
+      g = std::max(g, collision::separating_axis(NarrowBody(a, a.position() - o), NarrowBody(b, b.position() - o)).depth);
     }
     return g;
   }
@@ -291,6 +297,24 @@ struct Collider {
  private:
   using Motion = typename Bodies::Motion;
   using Motions = std::vector<Motion>;
+  using Shape = typename NarrowBody::Shape;
+
+  // The narrowphase's geometry of each body (issue #14): placed once per
+  // detection (or per time-of-impact trial) on its first pair, then read by
+  // every pair it is in; pose() is only asked for bodies some pair needs.
+  mutable std::vector<Shape> shapes_;
+  mutable std::vector<std::uint64_t> placed_in_;
+  mutable std::uint64_t detection_ = 0;
+  mutable collision::PairMemory<collision::SatHint> hints_;  // each pair's last axis
+  template <class PoseOf>
+  const Shape& shape(int b, PoseOf&& pose_of) const {
+    if (shapes_.size() != setup.meshes.size()) shapes_.resize(setup.meshes.size()), placed_in_.assign(setup.meshes.size(), 0);
+    if (placed_in_[b] != detection_) {
+      shapes_[b].place({setup.meshes[b].get(), pose_of()});
+      placed_in_[b] = detection_;
+    }
+    return shapes_[b];
+  }
   struct Row {
     int a, b;
     std::size_t sa, sb;    // the bodies' slots in the response's Motions
