@@ -24,6 +24,8 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["response_sweep_cap_hits"] = sweep_cap_hits;
   out["correction_sweep_cap_hits"] = correction_cap_hits;
   out["unresolved_impacts"] = unresolved_impacts;
+  out["narrowphase_shapes"] = narrowphase_shapes;
+  out["narrowphase_axes_kept"] = narrowphase_axes_kept;
 }
 
 CollisionSetup collision_setup(const Scene& scene) {

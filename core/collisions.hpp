@@ -87,6 +87,7 @@ struct CollisionCounters {
   std::uint64_t impact_searches = 0, impact_iterations = 0, impact_evaluations = 0, unresolved_searches = 0;
   std::uint64_t contacts = 0, impulses = 0, resting_contacts = 0, sweeps = 0, corrections = 0;
   std::uint64_t warm_started = 0, sweep_cap_hits = 0, correction_cap_hits = 0, unresolved_impacts = 0;
+  std::uint64_t narrowphase_shapes = 0, narrowphase_axes_kept = 0;  // bodies' geometry built; pairs their last axis decided
   void add_to(std::map<std::string, std::uint64_t>& out) const;
 };
 
@@ -194,10 +195,16 @@ struct Collider {
       if (setup.is_static[i] && setup.is_static[j]) continue;
       ++counters.narrowphase_pairs;
       PairHit h{i, j, {}, {}};
-      collision::SatHint hint = hints_.recall(i, j);
-      h.sat = collision::narrowphase<NarrowBody>(shape(i, [&] { return pose[i]; }), shape(j, [&] { return pose[j]; }),
-                                                 method, &h.features, &hint);
-      hints_.keep(i, j, hint);
+      if (setup.settings.reuse) {
+        collision::SatHint hint = hints_.recall(i, j);
+        h.sat = collision::narrowphase<NarrowBody>(shape(i, [&] { return pose[i]; }), shape(j, [&] { return pose[j]; }),
+                                                   method, &h.features, &hint);
+        hints_.keep(i, j, hint);
+        counters.narrowphase_axes_kept += hint.kept;
+      } else {
+        h.sat = collision::narrowphase<NarrowBody>(placed(pose, i), placed(pose, j), method, &h.features);
+        counters.narrowphase_shapes += 2;
+      }
       if (!h.sat.intersect) continue;
       d.max_depth = std::max(d.max_depth, h.sat.depth);
       d.hits.push_back(std::move(h));
@@ -212,11 +219,16 @@ struct Collider {
     ScopedStage timed(profile, Stage::narrowphase);
     double g = -INFINITY;
     ++detection_;
+    Shape own_a, own_b;  // without reuse: each pair's own
     for (const auto& [i, j] : pairs) {  // few pairs, each body in one or two: their poses only
-      const Shape& a = shape(i, [&] { return Bodies::pose(m, y, i); });
-      const Shape& b = shape(j, [&] { return Bodies::pose(m, y, j); });
+      const auto pose_of = [&](int b) { return [&, b] { return Bodies::pose(m, y, static_cast<std::size_t>(b)); }; };
+      const bool reuse = setup.settings.reuse;
+      if (!reuse) own_a = Shape({setup.meshes[i].get(), pose_of(i)()}), own_b = Shape({setup.meshes[j].get(), pose_of(j)()});
+      const Shape& a = reuse ? shape(i, pose_of(i)) : own_a;
+      const Shape& b = reuse ? shape(j, pose_of(j)) : own_b;
       const Vec3 o = collision::local_origin(a.position(), b.position());
       g = std::max(g, collision::separating_axis(NarrowBody(a, a.position() - o), NarrowBody(b, b.position() - o)).depth);
+      counters.narrowphase_shapes += reuse ? 0 : 2;
     }
     return g;
   }
@@ -312,6 +324,7 @@ struct Collider {
     if (placed_in_[b] != detection_) {
       shapes_[b].place({setup.meshes[b].get(), pose_of()});
       placed_in_[b] = detection_;
+      ++counters.narrowphase_shapes;
     }
     return shapes_[b];
   }

@@ -518,7 +518,8 @@ class Loader {
       });
       return a;
     }
-    static constexpr Keys<6> keys = {"type", "restitution", "penetration_tolerance", "step", "time_of_impact", "method"};
+    static constexpr Keys<7> keys = {"type",           "restitution", "penetration_tolerance", "step",
+                                     "time_of_impact", "method",      "reuse"};
     Obj o(v, keys);
     Collisions c;
     if (auto x = o.opt("method")) {
@@ -536,6 +537,7 @@ class Loader {
     }
     if (auto x = o.opt("restitution")) c.restitution = number(*x, Range::unit);
     if (auto x = o.opt("penetration_tolerance")) c.penetration_tolerance = number(*x, Range::positive);
+    if (auto x = o.opt("reuse")) c.reuse = boolean(*x);
     return c;
   }
 

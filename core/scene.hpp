@@ -68,6 +68,11 @@ struct Collisions {
   double step = 1e-3;
   TimeOfImpact time_of_impact = TimeOfImpact::bisection;
   ContactMethod method = ContactMethod::manifold;
+  // Each body's narrowphase geometry built once per detection and each pair's
+  // separating axis kept between detections (issue #14); false rebuilds both
+  // bodies for every pair and remembers nothing: the same run, slower (for
+  // tests and benchmarks).
+  bool reuse = true;
 };
 // Forces applied at points of bodies (§2.3.1: L̇ = τ): each pushes body `body` at
 // `point` (body coordinates, from the centre of mass) with `force` (world, N)

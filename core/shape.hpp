@@ -56,7 +56,7 @@ namespace gacompare::collision {
 // From this many vertices on, hill climbing finds support points; below, the
 // scan is cheaper (bench/narrowphase_bench.cpp BM_support_*, README "What
 // detection costs").
-inline constexpr int kHillClimbVertices = 24;
+inline constexpr int kHillClimbVertices = 32;
 
 // A feature edge relative to its body's position: a point, the direction, and
 // the normals of its two faces (its arc on the Gauss map). The triangle of
@@ -66,9 +66,10 @@ struct ShapeEdge {
   Vec3 p, d, n0, n1;
 };
 
-template <class Algebra>
+template <class A>
 class Shape {
  public:
+  using Algebra = A;
   using Point = typename Algebra::Point;
   using Plane = typename Algebra::Plane;
   using Prepared = typename Algebra::PreparedTriangle;
@@ -102,6 +103,10 @@ class Shape {
     climb_ = mesh_->corners_only() && static_cast<int>(v.size()) >= kHillClimbVertices;
     edges_ready_ = triangles_ready_ = false;
   }
+
+  // Forgets the pose, so that the next place() builds everything again (for
+  // timing one pair's first meeting; the storage stays).
+  void reset() { mesh_ = nullptr; }
 
   const Mesh& mesh() const { return *mesh_; }
   const Pose& pose() const { return pose_; }
