@@ -1,17 +1,27 @@
-// What a tighter penetration tolerance costs in time (issue #7): the bundled
-// drop scenes run with tolerances 1e-3 … 1e-7 m through both time-of-impact
-// searches (bisection, §2.5.1; Illinois on the separating-axis depth, §4.3)
-// and both backends. Per cell: impact searches, iterations and state
-// evaluations per search, the time_of_impact stage's share, and the whole run's
-// wall time (median of the repeats, interleaved). Markdown on stdout.
+// What the time of impact costs (issues #7 and #14), two tables, markdown on
+// stdout:
 //
-//   build/release/bench/time_of_impact_sweep [repeats=3] [scene names...]
+//   time_of_impact_sweep [repeats=3] [scene names...]
+//     the bundled drops with tolerances 1e-3 … 1e-7 m through bisection and
+//     Illinois: what a tighter penetration tolerance costs;
+//   time_of_impact_sweep --methods [repeats=3] [scene names...]
+//     each scene at its own tolerance through the four searches of
+//     core/time_of_impact.hpp (bisection, Illinois, golden section,
+//     conservative advancement) with both motions (the island re-integrated
+//     per trial, or interpolated in each backend's algebra: quaternion slerp
+//     or rotor power along a line, then integrated once).
+//
+// Per cell and backend: impact searches, depth trials and island integrations
+// per search, interpolation misses (the time found by interpolation not in the
+// band on the true motion), unresolved searches, the time_of_impact stage and
+// the whole run (medians of the repeats; backends and cells interleaved).
 #include "cga/backend.hpp"
 #include "compare/stats.hpp"
 #include "core/simulator.hpp"
 #include "traditional/backend.hpp"
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -26,50 +36,92 @@ struct Cell {
   core::Run last;
 };
 
-core::Scene with(core::Scene s, double tol, core::TimeOfImpact m) {
+struct Setting {
+  double tol;
+  core::TimeOfImpact method;
+  core::ImpactMotion motion;
+};
+
+core::Scene with(core::Scene s, const Setting& x) {
   for (auto& e : s.effects)
-    if (auto* c = std::get_if<core::Collisions>(&e)) c->penetration_tolerance = tol, c->time_of_impact = m;
+    if (auto* c = std::get_if<core::Collisions>(&e)) {
+      if (x.tol > 0) c->penetration_tolerance = x.tol;
+      c->time_of_impact = x.method, c->impact_motion = x.motion;
+    }
   return s;
+}
+
+const char* method_name(core::TimeOfImpact m) {
+  switch (m) {
+    case core::TimeOfImpact::bisection: return "bisection";
+    case core::TimeOfImpact::illinois: return "illinois";
+    case core::TimeOfImpact::golden_section: return "golden_section";
+    case core::TimeOfImpact::conservative_advancement: return "conservative_advancement";
+  }
+  return "?";
+}
+
+double tolerance_of(const core::Scene& s) { return s.find_effect<core::Collisions>()->penetration_tolerance; }
+
+// Both backends `repeats` times on one setting, the order alternating.
+std::map<std::string, Cell> measure(const core::Scene& scene, int repeats) {
+  std::map<std::string, Cell> cells;
+  for (int r = 0; r < repeats; ++r)
+    for (int k = 0; k < 2; ++k) {
+      const bool trad = (k + r) % 2 == 0;
+      core::Run run = trad ? core::simulate<traditional::Backend>(scene) : core::simulate<cga::Backend>(scene);
+      Cell& c = cells[run.backend];
+      c.wall.push_back(run.wall_seconds);
+      c.toi.push_back(run.profile[core::Stage::time_of_impact].seconds);
+      c.last = std::move(run);
+    }
+  return cells;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
+  int arg = 1;
+  const bool methods = argc > 1 && std::strcmp(argv[1], "--methods") == 0;
+  if (methods) ++arg;
+  const int repeats = argc > arg ? std::max(1, std::atoi(argv[arg])) : 3;
   std::vector<std::string> names;
-  for (int i = 2; i < argc; ++i) names.push_back(argv[i]);
-  if (names.empty()) names = {"cube_drop_flat", "cube_drop_corner"};
-  const std::vector<double> tolerances{1e-3, 1e-4, 1e-5, 1e-6, 1e-7};
-  std::printf("Command: `time_of_impact_sweep %d%s` (wall: median of %d interleaved repeats)\n\n", repeats,
-              argc > 2 ? " ..." : "", repeats);
-  std::printf("| scene | tolerance m | search | backend | searches | iterations / search | evaluations / search | "
-              "unresolved | time of impact ms | run ms |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|\n");
+  for (int i = arg + 1; i < argc; ++i) names.push_back(argv[i]);
+  if (names.empty()) names = methods ? std::vector<std::string>{"cube_drop_corner", "contact_stack5", "bodies_in_box"}
+                                     : std::vector<std::string>{"cube_drop_flat", "cube_drop_corner"};
+  std::string command = "time_of_impact_sweep";
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  std::printf("Command: `%s` (wall: median of %d interleaved repeats)\n\n", command.c_str(), repeats);
+  std::printf("| scene | tolerance m | search | motion | backend | searches | trials / search | integrations / search | "
+              "misses | unresolved | time of impact ms | run ms |\n"
+              "|---|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& name : names) {
     const auto base = core::load_scene(std::filesystem::path(GACOMPARE_DATA_DIR) / "scenes" / (name + ".json"));
-    for (const double tol : tolerances)
-      for (const auto method : {core::TimeOfImpact::bisection, core::TimeOfImpact::illinois}) {
-        const core::Scene scene = with(base, tol, method);
-        std::map<std::string, Cell> cells;
-        for (int r = 0; r < repeats; ++r)
-          for (int k = 0; k < 2; ++k) {  // ABBA-ish: the order alternates per repeat
-            const bool trad = (k + r) % 2 == 0;
-            core::Run run = trad ? core::simulate<traditional::Backend>(scene) : core::simulate<cga::Backend>(scene);
-            Cell& c = cells[run.backend];
-            c.wall.push_back(run.wall_seconds);
-            c.toi.push_back(run.profile[core::Stage::time_of_impact].seconds);
-            c.last = std::move(run);
-          }
-        for (const auto& [backend, c] : cells) {
-          const auto& k = c.last.counters;
-          const double searches = static_cast<double>(k.at("impact_searches"));
-          std::printf("| %s | %.0e | %s | %s | %.0f | %.1f | %.1f | %llu | %.2f | %.1f |\n", name.c_str(), tol,
-                      method == core::TimeOfImpact::bisection ? "bisection" : "illinois", backend.c_str(), searches,
-                      searches ? k.at("impact_iterations") / searches : 0.0,
-                      searches ? k.at("impact_state_evaluations") / searches : 0.0,
-                      static_cast<unsigned long long>(k.at("impact_searches_unresolved")),
-                      1e3 * compare::spread(c.toi).median, 1e3 * compare::spread(c.wall).median);
-        }
+    std::vector<Setting> settings;
+    if (methods) {
+      for (const auto m : {core::TimeOfImpact::bisection, core::TimeOfImpact::illinois, core::TimeOfImpact::golden_section,
+                           core::TimeOfImpact::conservative_advancement})
+        for (const auto motion : {core::ImpactMotion::integrate, core::ImpactMotion::interpolate})
+          settings.push_back({tolerance_of(base), m, motion});
+    } else {
+      for (const double tol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7})
+        for (const auto m : {core::TimeOfImpact::bisection, core::TimeOfImpact::illinois})
+          settings.push_back({tol, m, core::ImpactMotion::integrate});
+    }
+    for (const auto& x : settings) {
+      const auto cells = measure(with(base, x), repeats);
+      for (const auto& [backend, c] : cells) {
+        const auto& k = c.last.counters;
+        const double searches = static_cast<double>(k.at("impact_searches"));
+        const auto per = [&](const char* what) { return searches ? static_cast<double>(k.at(what)) / searches : 0.0; };
+        std::printf("| %s | %.0e | %s | %s | %s | %.0f | %.2f | %.2f | %llu | %llu | %.2f | %.1f |\n", name.c_str(), x.tol,
+                    method_name(x.method), x.motion == core::ImpactMotion::integrate ? "integrate" : "interpolate",
+                    backend.c_str(), searches, per("impact_iterations"), per("impact_state_evaluations"),
+                    static_cast<unsigned long long>(k.at("impact_interpolation_misses")),
+                    static_cast<unsigned long long>(k.at("impact_searches_unresolved")),
+                    1e3 * compare::spread(c.toi).median, 1e3 * compare::spread(c.wall).median);
       }
+    }
   }
   return 0;
 }

@@ -68,6 +68,13 @@ RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vecto
   return m;
 }
 
+RigidBodies::Model RigidBodies::subset(const Model& m, std::span<const int> which) {
+  Model out;
+  out.renormalise = m.renormalise;
+  core::copy_bodies(m, which, out);
+  return out;
+}
+
 void RigidBodies::initial_state(const Model& m, std::span<double> y) {
   std::copy(m.y0.begin(), m.y0.end(), y.begin());
 }
@@ -196,6 +203,17 @@ collision::Pose RigidBodies::pose(const Model& m, std::span<const double> y, std
 // its coefficients once, not three sandwiches), and I⁻¹_world = S I⁻¹ Sᵀ. A
 // point carried by the body moves with ṙ = r⌋Ω (the commutator of eq. 35:
 // d/dt (R r R̃) = ½(r Ω − Ω r) = r⌋Ω for a vector r and a bivector Ω).
+collision::Pose RigidBodies::interpolated_pose(const Model& m, std::span<const double> y0, std::span<const double> y1,
+                                               std::size_t b, double s) {
+  (void)m;
+  const Layout at = layout(b);
+  const Rotor3 r0 = rotor_at(y0, at.rot) / std::sqrt(norm2(rotor_at(y0, at.rot)));
+  Rotor3 step = reverse(r0) * (rotor_at(y1, at.rot) / std::sqrt(norm2(rotor_at(y1, at.rot))));
+  if (step.c[0] < 0) step = step * -1.0;  // R and −R turn alike: the shorter way
+  const Rotor3 r = r0 * exp(log(step) * s);
+  return {rotation_matrix(r), to_eigen(vec_at(y0, at.x) * (1 - s) + vec_at(y1, at.x) * s)};
+}
+
 RigidBodies::Motion RigidBodies::motion(const Model& m, std::span<const double> y, std::size_t b) {
   const Body& body = m.bodies[b];
   const Layout at = layout(b);

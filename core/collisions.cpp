@@ -15,6 +15,8 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["impact_iterations"] = impact_iterations;
   out["impact_state_evaluations"] = impact_evaluations;
   out["impact_searches_unresolved"] = unresolved_searches;
+  out["impact_interpolated_evaluations"] = impact_interpolations;
+  out["impact_interpolation_misses"] = impact_interpolation_misses;
   out["contacts"] = contacts;
   out["resting_contacts"] = resting_contacts;
   out["impulses"] = impulses;
@@ -24,6 +26,11 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["response_sweep_cap_hits"] = sweep_cap_hits;
   out["correction_sweep_cap_hits"] = correction_cap_hits;
   out["unresolved_impacts"] = unresolved_impacts;
+  out["islands"] = islands;
+  out["islands_stepped_alone"] = local_islands;
+  out["island_bodies_stepped_alone"] = local_island_bodies;
+  out["island_steps"] = local_steps;
+  out["largest_island"] = largest_island;
   out["narrowphase_shapes"] = narrowphase_shapes;
   out["narrowphase_axes_kept"] = narrowphase_axes_kept;
 }
@@ -31,6 +38,7 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
 CollisionSetup collision_setup(const Scene& scene) {
   CollisionSetup s;
   s.settings = *scene.find_effect<Collisions>();
+  s.solver = scene.solver;
   if (const auto* g = scene.find_effect<Gravity>()) s.gravity = g->g.norm();
   s.resting_speed = std::sqrt(2 * s.gravity * s.settings.penetration_tolerance) + 2 * s.gravity * s.settings.step;
   s.min_inradius = INFINITY;
@@ -49,6 +57,7 @@ CollisionSetup collision_setup(const Scene& scene) {
     s.min_inradius = std::min(s.min_inradius, inradius);
     s.restitution.push_back(body.restitution ? *body.restitution : s.settings.restitution);
     s.is_static.push_back(body.is_static);
+    s.everyone.push_back(static_cast<int>(s.everyone.size()));
   }
   return s;
 }

@@ -6,20 +6,25 @@
 // bounding-sphere algebra. Only built when the scene lists the `collisions`
 // effect; otherwise nothing here runs.
 //
-// One collision step from an accepted state (t0, y0), §2.5.1's double buffer:
-//   1. integrate to t1 = t0 + h (h ≤ the effect's `step`, shorter where a body
-//      could move more than half the smallest inradius: no tunnelling);
-//   2. broadphase (sort and sweep over bounding spheres) and narrowphase at t1:
-//      the separating-axis depth, and for pairs in contact the contact
-//      manifold (method "manifold", core/manifold.hpp) or the report's
-//      detector (method "report", fig. 7);
-//   3. deeper than the penetration tolerance: time of impact. y0 is still
-//      there; search t* in (t0, t1) where the deepest contact is in (0, tol],
-//      re-integrating from y0 for every trial time: bisection (§2.5.1) or
-//      Illinois regula falsi on the depth (§4.3's "more advanced methods");
-//   4. response at the accepted time: impulses at every contact (eq. 53 / 54
-//      as each row's effective mass), solved together, then the positional
-//      correction.
+// One collision step from an accepted state (t0, y0), §2.5.1's double buffer,
+// island by island (core/collision_step.hpp):
+//   1. integrate the world to t1 = t0 + step;
+//   2. broadphase (sort and sweep over bounding spheres, grown by how far each
+//      body can move in the step) and narrowphase at t1: the separating-axis
+//      depth, and for pairs in contact the contact manifold (method
+//      "manifold", core/manifold.hpp) or the report's detector (method
+//      "report", fig. 7); the grown spheres' overlaps link the bodies into
+//      islands (core/islands.hpp);
+//   3. an island with a pair deeper than the penetration tolerance, or a body
+//      that could move more than half the smallest inradius in the step (no
+//      tunnelling), is stepped alone from y0 in sub-steps, with a time of
+//      impact search where a pair went too deep: t* where the deepest contact
+//      is in (0, tol], re-integrating the island for every trial time:
+//      bisection (§2.5.1) or Illinois regula falsi on the depth (§4.3's "more
+//      advanced methods");
+//   4. response at the accepted time, per island: impulses at every contact
+//      (eq. 53 / 54 as each row's effective mass), solved together, then the
+//      positional correction.
 //
 // Resting contact (the report has none; fn 29 only asks that all contacts meet
 // the tolerance before any response):
@@ -51,6 +56,7 @@
 #include "core/rigid_body.hpp"
 #include "core/scene.hpp"
 #include "core/stage.hpp"
+#include "core/time_of_impact.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -59,6 +65,7 @@
 #include <random>
 #include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace gacompare::core {
@@ -80,13 +87,18 @@ inline constexpr int kMaxSweeps = 1000;
 // 0.59 and 0.78 s of run time (traditional; warm starting keeps it to
 // ~35 sweeps a step).
 inline constexpr double kVelocityTolerance = 1e-11;
-inline constexpr int kMaxImpactIterations = 60;  // time-of-impact trials per search (2⁻⁶⁰ of a step)
 
 struct CollisionCounters {
   std::uint64_t steps = 0, shortened_steps = 0, broadphase_candidates = 0, narrowphase_pairs = 0;
   std::uint64_t impact_searches = 0, impact_iterations = 0, impact_evaluations = 0, unresolved_searches = 0;
+  std::uint64_t impact_interpolations = 0, impact_interpolation_misses = 0;  // impact_motion "interpolate"
   std::uint64_t contacts = 0, impulses = 0, resting_contacts = 0, sweeps = 0, corrections = 0;
   std::uint64_t warm_started = 0, sweep_cap_hits = 0, correction_cap_hits = 0, unresolved_impacts = 0;
+  // Islands (core/islands.hpp, core/collision_step.hpp): the islands with a
+  // candidate pair, those stepped on their own (a pair too deep or a step
+  // too long for them), the bodies those held (each re-integrated from the
+  // step's start) and the largest island seen.
+  std::uint64_t islands = 0, local_islands = 0, local_island_bodies = 0, largest_island = 0, local_steps = 0;
   std::uint64_t narrowphase_shapes = 0, narrowphase_axes_kept = 0;  // bodies' geometry built; pairs their last axis decided
   void add_to(std::map<std::string, std::uint64_t>& out) const;
 };
@@ -99,7 +111,9 @@ struct CollisionSetup {
   std::vector<std::shared_ptr<const Mesh>> meshes;
   std::vector<Vec3> sphere_centre;  // body frame
   std::vector<double> sphere_radius, inradius, restitution;
-  std::vector<bool> is_static;
+  std::vector<char> is_static;
+  std::vector<int> everyone;  // 0 … n − 1: the world as a group (see Collider)
+  SolverSpec solver;          // the scene's: an island is integrated alone with it
   double gravity = 0;       // |g|
   double resting_speed = 0;  // v_rest above
   double min_inradius = 0;
@@ -110,6 +124,7 @@ struct CollisionSetup {
 CollisionSetup collision_setup(const Scene& scene);
 
 // One pair in contact: the separating-axis answer and the report's contacts.
+// a and b are the bodies' indices in the group detected (see Collider).
 struct PairHit {
   int a = 0, b = 0;
   collision::PairContact sat;
@@ -118,11 +133,21 @@ struct PairHit {
 struct Detection {
   double max_depth = -INFINITY;  // over the pairs in contact; −∞ when none
   std::vector<PairHit> hits;
+  // With margins: the pairs whose grown spheres overlap (i < j, sorted), a
+  // superset of the pairs the narrowphase tested; the islands' links.
+  std::vector<std::pair<int, int>> candidates;
 };
 
+// The collider works on a group of bodies: the whole world (the world's model
+// and state, `setup.everyone` as the group) or one island integrated on its
+// own (an island's sub-model, core/collision_step.hpp). Body k of the group's
+// model is world body world[k]: meshes, spheres, restitution and the
+// warm-start cache are the world's, the state and the motions the group's.
 template <class Bodies, class NarrowBody, class Spheres>
 struct Collider {
   using Model = typename Bodies::Model;
+  using BodiesType = Bodies;
+  using World = std::span<const int>;
   CollisionSetup setup;
   mutable CollisionCounters counters;
 
@@ -139,7 +164,7 @@ struct Collider {
       }
     }
     // fn 28: bodies must not start in collision.
-    const Detection d = c.detect(m, m.y0, profile);
+    const Detection d = c.detect(m, m.y0, c.setup.everyone, {}, profile);
     for (const auto& h : d.hits)
       if (h.sat.depth > c.setup.settings.penetration_tolerance)
         throw input_error("bodies '" + c.setup.names[h.a] + "' and '" + c.setup.names[h.b] + "' overlap at t = 0 by " +
@@ -152,57 +177,77 @@ struct Collider {
 
   // Every body's pose at state y, once per detection (a rotor or quaternion
   // becomes a matrix here, not once per pair it takes part in).
-  std::vector<collision::Pose> poses(const Model& m, std::span<const double> y) const {
+  std::vector<collision::Pose> poses(const Model& m, std::span<const double> y, World world) const {
     std::vector<collision::Pose> out;
-    out.reserve(setup.meshes.size());
-    for (std::size_t b = 0; b < setup.meshes.size(); ++b) out.push_back(Bodies::pose(m, y, b));
+    out.reserve(world.size());
+    for (std::size_t k = 0; k < world.size(); ++k) out.push_back(Bodies::pose(m, y, k));
     return out;
   }
-  collision::Placed placed(const std::vector<collision::Pose>& pose, std::size_t b) const {
-    return {setup.meshes[b].get(), pose[b]};
+  collision::Placed placed(const std::vector<collision::Pose>& pose, World world, int k) const {
+    return {setup.meshes[world[k]].get(), pose[k]};
   }
 
-  // Broadphase and narrowphase at one state.
-  Detection detect(const Model& m, std::span<const double> y, Profile& profile) const {
-    const std::size_t n = setup.meshes.size();
-    BroadphaseResult pairs;
+  // Broadphase and narrowphase at one state of a group. margin (empty, or one
+  // per body of the group) grows each body's sphere by how far it can move in
+  // the step: the grown spheres' overlaps are the candidates (the islands'
+  // links, Detection::candidates), and the narrowphase tests the candidates
+  // whose own spheres overlap.
+  Detection detect(const Model& m, std::span<const double> y, World world, std::span<const double> margin,
+                   Profile& profile) const {
+    const std::size_t n = world.size();
+    Detection d;
+    std::vector<std::pair<int, int>> pairs;
     std::vector<collision::Pose> pose;
     {
       ScopedStage timed(profile, Stage::broadphase);
-      pose = poses(m, y);
+      pose = poses(m, y, world);
       // The spheres in a frame at the bodies' mean position (issue #16: a
       // conformal sphere stores ½|c|² beside c, so world coordinates 1e5 m
       // from the origin cost the cga overlap test 10 digits and it missed the
       // pair; the narrowphase works per pair about its own local origin).
       // Overlap does not depend on the frame, so the pairs are the same.
       Vec3 frame = Vec3::Zero();
-      for (std::size_t b = 0; b < n; ++b) frame += pose[b].position;
+      for (std::size_t k = 0; k < n; ++k) frame += pose[k].position;
       if (n > 0) frame /= static_cast<double>(n);
-      std::vector<typename Spheres::Sphere> spheres;
+      using Sphere = typename Spheres::Sphere;
+      std::vector<Sphere> spheres, grown;
       spheres.reserve(n);
-      for (std::size_t b = 0; b < n; ++b)
-        spheres.push_back(Spheres::sphere(pose[b].apply(setup.sphere_centre[b]) - frame, setup.sphere_radius[b]));
-      pairs = sort_and_sweep<Spheres>(std::span<const typename Spheres::Sphere>(spheres));
-      counters.broadphase_candidates += static_cast<std::uint64_t>(pairs.counters.candidates);
+      for (std::size_t k = 0; k < n; ++k)
+        spheres.push_back(
+            Spheres::sphere(pose[k].apply(setup.sphere_centre[world[k]]) - frame, setup.sphere_radius[world[k]]));
+      if (margin.empty()) {
+        pairs = sort_and_sweep<Spheres>(std::span<const Sphere>(spheres)).pairs;
+      } else {
+        grown.reserve(n);
+        for (std::size_t k = 0; k < n; ++k)
+          grown.push_back(Spheres::sphere(pose[k].apply(setup.sphere_centre[world[k]]) - frame,
+                                          setup.sphere_radius[world[k]] + margin[k]));
+        d.candidates = sort_and_sweep<Spheres>(std::span<const Sphere>(grown)).pairs;
+        for (const auto& [i, j] : d.candidates)
+          if (Spheres::overlap(spheres[static_cast<std::size_t>(i)], spheres[static_cast<std::size_t>(j)]))
+            pairs.emplace_back(i, j);
+      }
+      counters.broadphase_candidates += margin.empty() ? pairs.size() : d.candidates.size();
     }
     ScopedStage timed(profile, Stage::narrowphase);
     const auto method = setup.settings.method == ContactMethod::report ? collision::Method::sat_then_report
                                                                        : collision::Method::sat_then_manifold;
-    Detection d;
     ++detection_;
-    hints_.next();
-    for (const auto& [i, j] : pairs.pairs) {
-      if (setup.is_static[i] && setup.is_static[j]) continue;
+    if (world.size() == setup.meshes.size()) hints_.next();  // a detection of everyone: the pairs it meets are the ones kept
+    for (auto [i, j] : pairs) {
+      if (setup.is_static[world[i]] && setup.is_static[world[j]]) continue;
+      if (world[i] > world[j]) std::swap(i, j);  // a < b in the world: every group sees a pair the same way
       ++counters.narrowphase_pairs;
       PairHit h{i, j, {}, {}};
       if (setup.settings.reuse) {
-        collision::SatHint hint = hints_.recall(i, j);
-        h.sat = collision::narrowphase<NarrowBody>(shape(i, [&] { return pose[i]; }), shape(j, [&] { return pose[j]; }),
+        const int a = world[i], b = world[j];
+        collision::SatHint hint = hints_.recall(a, b);
+        h.sat = collision::narrowphase<NarrowBody>(shape(a, [&] { return pose[i]; }), shape(b, [&] { return pose[j]; }),
                                                    method, &h.features, &hint);
-        hints_.keep(i, j, hint);
+        hints_.keep(a, b, hint);
         counters.narrowphase_axes_kept += hint.kept;
       } else {
-        h.sat = collision::narrowphase<NarrowBody>(placed(pose, i), placed(pose, j), method, &h.features);
+        h.sat = collision::narrowphase<NarrowBody>(placed(pose, world, i), placed(pose, world, j), method, &h.features);
         counters.narrowphase_shapes += 2;
       }
       if (!h.sat.intersect) continue;
@@ -212,20 +257,28 @@ struct Collider {
     return d;
   }
 
-  // The deepest separating-axis depth among the given pairs (the time-of-impact
-  // function: continuous in time, unlike the feature test's yes/no).
-  double depth_of(const Model& m, std::span<const double> y, const std::vector<std::pair<int, int>>& pairs,
+  // The deepest separating-axis depth among the given pairs of the group (the
+  // time-of-impact function: continuous in time, unlike the feature test's
+  // yes/no), at state y, or with each body placed by pose_of(k).
+  double depth_of(const Model& m, std::span<const double> y, World world, const std::vector<std::pair<int, int>>& pairs,
                   Profile& profile) const {
+    return depth_at(world, pairs, [&](int k) { return Bodies::pose(m, y, static_cast<std::size_t>(k)); }, profile);
+  }
+  template <class PoseOf>
+  double depth_at(World world, const std::vector<std::pair<int, int>>& pairs, PoseOf&& pose_of, Profile& profile) const {
     ScopedStage timed(profile, Stage::narrowphase);
     double g = -INFINITY;
     ++detection_;
     Shape own_a, own_b;  // without reuse: each pair's own
     for (const auto& [i, j] : pairs) {  // few pairs, each body in one or two: their poses only
-      const auto pose_of = [&](int b) { return [&, b] { return Bodies::pose(m, y, static_cast<std::size_t>(b)); }; };
       const bool reuse = setup.settings.reuse;
-      if (!reuse) own_a = Shape({setup.meshes[i].get(), pose_of(i)()}), own_b = Shape({setup.meshes[j].get(), pose_of(j)()});
-      const Shape& a = reuse ? shape(i, pose_of(i)) : own_a;
-      const Shape& b = reuse ? shape(j, pose_of(j)) : own_b;
+      const int wa = world[i], wb = world[j];
+      if (!reuse) {
+        own_a.reset(), own_b.reset();
+        own_a.place({setup.meshes[wa].get(), pose_of(i)}), own_b.place({setup.meshes[wb].get(), pose_of(j)});
+      }
+      const Shape& a = reuse ? shape(wa, [&] { return pose_of(i); }) : own_a;
+      const Shape& b = reuse ? shape(wb, [&] { return pose_of(j); }) : own_b;
       const Vec3 o = collision::local_origin(a.position(), b.position());
       g = std::max(g, collision::separating_axis(NarrowBody(a, a.position() - o), NarrowBody(b, b.position() - o)).depth);
       counters.narrowphase_shapes += reuse ? 0 : 2;
@@ -233,45 +286,57 @@ struct Collider {
     return g;
   }
 
-  // How long a step may be: no body moves more than half the smallest inradius
-  // (a point at distance ρ from the centre moves at most (|v| + ρ|ω|) h).
-  double step_limit(const Model& m, std::span<const double> y, double h) const {
-    double reach = 0;
-    for (std::size_t b = 0; b < setup.meshes.size(); ++b) {
-      if (setup.is_static[b]) continue;
-      const auto mo = Bodies::motion(m, y, b);
-      const double rim = Bodies::speed(mo) + setup.sphere_radius[b] * Bodies::angular_speed(mo);
-      reach = std::max(reach, rim * h + 0.5 * setup.gravity * h * h);
-    }
-    const double limit = 0.5 * setup.min_inradius;
-    return reach > limit ? h * limit / reach : h;
+  // How fast body k's rim can move: |v| + ρ|ω|, ρ its bounding radius.
+  double rim_speed(const Model& m, std::span<const double> y, World world, std::size_t k) const {
+    if (setup.is_static[world[k]]) return 0;
+    const auto mo = Bodies::motion(m, y, k);
+    return Bodies::speed(mo) + setup.sphere_radius[world[k]] * Bodies::angular_speed(mo);
   }
 
-  // §2.5: impulses at every contact of the detection, solved together, then
-  // the positional correction (see the top of this file). `dt` is the time
-  // since the last accepted state: warm-started impulses scale with it.
-  void respond(const Model& m, std::span<double> y, const Detection& d, double dt, Profile& profile) const {
+  // How far body k of the group can move in h: a point at distance ρ from the
+  // centre moves at most (|v| + ρ|ω|) h, and gravity adds ½ g h². 0 when static.
+  double reach(const Model& m, std::span<const double> y, World world, std::size_t k, double h) const {
+    if (setup.is_static[world[k]]) return 0;
+    return rim_speed(m, y, world, k) * h + 0.5 * setup.gravity * h * h;
+  }
+
+  // How long a step of the group may be: no body moves more than half the
+  // smallest inradius (of the world: a conservative bound for every island).
+  double step_limit(const Model& m, std::span<const double> y, World world, double h) const {
+    double most = 0;
+    for (std::size_t k = 0; k < world.size(); ++k) most = std::max(most, reach(m, y, world, k, h));
+    const double limit = 0.5 * setup.min_inradius;
+    return most > limit ? h * limit / most : h;
+  }
+
+  // §2.5: impulses at every contact of `hits` (pairs of the group), solved
+  // together, then the positional correction (see the top of this file). `dt`
+  // is the time since the group's last accepted state: warm-started impulses
+  // scale with it.
+  void respond(const Model& m, std::span<double> y, World world, std::span<const PairHit> hits, double dt,
+               Profile& profile) const {
     ScopedStage timed(profile, Stage::response);
     // The bodies in contact, read once, in slots the rows index (no lookup in
     // the solver's sweeps).
     Motions motion;
-    std::vector<int> body_of;  // slot → body
-    std::map<int, std::size_t> slot_of;
+    std::vector<int> body_of;  // slot → body of the group
+    std::unordered_map<int, std::size_t> slot_of;
     const auto slot = [&](int b) {
       const auto [it, fresh] = slot_of.emplace(b, motion.size());
       if (fresh) motion.push_back(Bodies::motion(m, y, static_cast<std::size_t>(b))), body_of.push_back(b);
       return it->second;
     };
     std::vector<Row> rows;
-    std::vector<char> resting_pair(d.hits.size(), 0);
-    for (std::size_t hi = 0; hi < d.hits.size(); ++hi) {
-      const auto& h = d.hits[hi];
-      const double eps = std::min(setup.restitution[h.a], setup.restitution[h.b]);
+    std::vector<char> resting_pair(hits.size(), 0);
+    for (std::size_t hi = 0; hi < hits.size(); ++hi) {
+      const auto& h = hits[hi];
+      const int wa = world[h.a], wb = world[h.b];
+      const double eps = std::min(setup.restitution[wa], setup.restitution[wb]);
       const std::size_t sa = slot(h.a), sb = slot(h.b);
       const Motion& ma = motion[sa];
       const Motion& mb = motion[sb];
       for (const auto& c : h.features) {
-        Row r{h.a, h.b, sa, sb, hi, c.normal, c.point - Bodies::position(ma), c.point - Bodies::position(mb),
+        Row r{wa, wb, sa, sb, hi, c.normal, c.point - Bodies::position(ma), c.point - Bodies::position(mb),
               Bodies::arm(ma, c.point, c.normal), Bodies::arm(mb, c.point, c.normal), 0, 0, 0, 0, c.depth};
         r.k = Bodies::inverse_effective_mass(ma, r.arm_a) + Bodies::inverse_effective_mass(mb, r.arm_b);
         if (!(r.k > 0)) continue;
@@ -293,17 +358,24 @@ struct Collider {
       // An impact whose approach the solve did not stop (to 0.1 % of its speed).
       if (r.before < -setup.resting_speed && normal_velocity(r, motion) < 1e-3 * r.before) ++counters.unresolved_impacts;
     }
-    remember(rows, dt);
+    remember(hits, world, rows, dt);
     // The pairs whose depth is corrected: deeper than tol/2, and resting or
     // not parting by themselves. A pair that parts after an impact is left
     // alone: the impact conserves momenta exactly, and the depth goes with it.
     const double tol = setup.settings.penetration_tolerance;
-    std::vector<char> correct(d.hits.size(), 0), parting(d.hits.size(), 1);
+    std::vector<char> correct(hits.size(), 0), parting(hits.size(), 1);
     for (const auto& r : rows) parting[r.hit] &= normal_velocity(r, motion) > setup.resting_speed;
-    for (std::size_t hi = 0; hi < d.hits.size(); ++hi)
-      correct[hi] = d.hits[hi].sat.depth > 0.5 * tol && (resting_pair[hi] || !parting[hi]);
+    for (std::size_t hi = 0; hi < hits.size(); ++hi)
+      correct[hi] = hits[hi].sat.depth > 0.5 * tol && (resting_pair[hi] || !parting[hi]);
     for (std::size_t k = 0; k < motion.size(); ++k) Bodies::store(m, y, static_cast<std::size_t>(body_of[k]), motion[k]);
     correct_positions(m, y, rows, motion, body_of, correct);
+  }
+
+  // Forgets warm-start impulses older than the previous collision step (a
+  // pair that stopped touching; a contact is only warm started from the step
+  // before). Once per collision step.
+  void forget_old_contacts() const {
+    std::erase_if(cache_, [&](const auto& kv) { return kv.second.step + 1 < counters.steps; });
   }
 
  private:
@@ -340,7 +412,15 @@ struct Collider {
     Vec3 ra, rb;
     double rate;  // impulse per second
   };
-  mutable std::map<std::pair<int, int>, std::vector<Cached>> cache_;  // by pair (a, b)
+  struct Remembered {
+    std::uint64_t step = 0;  // the collision step that stored them
+    std::vector<Cached> at;
+  };
+  // By world pair (a, b), a < b: an island and the world see a pair the same way round.
+  mutable std::unordered_map<std::uint64_t, Remembered> cache_;
+  static std::uint64_t key(int a, int b) {
+    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+  }
 
   static double normal_velocity(const Row& r, const Motions& of) {
     return Bodies::normal_velocity(of[r.sb], r.arm_b, r.n) - Bodies::normal_velocity(of[r.sa], r.arm_a, r.n);
@@ -384,12 +464,12 @@ struct Collider {
   void warm_start(std::vector<Row>& rows, Motions& motion, double dt) const {
     if (cache_.empty() || !(dt > 0)) return;
     for (auto& r : rows) {
-      const auto pair = cache_.find({r.a, r.b});
+      const auto pair = cache_.find(key(r.a, r.b));
       if (pair == cache_.end()) continue;
       const double near = 1e-2 * std::min(setup.meshes[r.a]->size(), setup.meshes[r.b]->size());
       const Cached* best = nullptr;
       double closest = near;
-      for (const auto& c : pair->second) {
+      for (const auto& c : pair->second.at) {
         const double dist = std::max((c.ra - r.ra).norm(), (c.rb - r.rb).norm());
         if (dist < closest) closest = dist, best = &c;
       }
@@ -399,11 +479,17 @@ struct Collider {
       ++counters.warm_started;
     }
   }
-  void remember(const std::vector<Row>& rows, double dt) const {
-    cache_.clear();
+  // The impulses of this solve replace what its pairs had; other pairs (other
+  // islands) keep theirs until forget_old_contacts.
+  void remember(std::span<const PairHit> hits, World world, const std::vector<Row>& rows, double dt) const {
+    for (const auto& h : hits) cache_.erase(key(world[h.a], world[h.b]));
     if (!(dt > 0)) return;
     for (const auto& r : rows)
-      if (r.lambda > 0) cache_[{r.a, r.b}].push_back({r.ra, r.rb, r.lambda / dt});
+      if (r.lambda > 0) {
+        auto& e = cache_[key(r.a, r.b)];
+        e.step = counters.steps;
+        e.at.push_back({r.ra, r.rb, r.lambda / dt});
+      }
   }
 
   // Positional correction by split impulse (pseudo-velocities, as Bullet's

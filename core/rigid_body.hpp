@@ -5,6 +5,9 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <span>
+
 #include <vector>
 
 namespace gacompare::core {
@@ -32,6 +35,30 @@ struct BodyEffects {
   std::vector<Push> pushes;
 };
 BodyEffects body_effects(const Scene& scene);
+
+// Bodies `which` (ascending scene indices) of model `from` into `to`, whose
+// settings the backend has already copied: the bodies' entries and names, the
+// effects, and the applied forces on those bodies re-indexed (body k of `to` is
+// body which[k] of `from`). The model of an island integrated on its own
+// (core/collision_step.hpp); both backends' `subset` call it, so the two
+// sub-models hold the same bodies in the same order.
+template <class Model>
+void copy_bodies(const Model& from, std::span<const int> which, Model& to) {
+  to.names.reserve(which.size());
+  to.bodies.reserve(which.size());
+  for (const int b : which) {
+    to.names.push_back(from.names[static_cast<std::size_t>(b)]);
+    to.bodies.push_back(from.bodies[static_cast<std::size_t>(b)]);
+  }
+  to.effects = from.effects;
+  to.effects.pushes.clear();
+  for (auto push : from.effects.pushes) {
+    const auto it = std::lower_bound(which.begin(), which.end(), static_cast<int>(push.body));
+    if (it == which.end() || *it != static_cast<int>(push.body)) continue;
+    push.body = static_cast<std::size_t>(it - which.begin());
+    to.effects.pushes.push_back(push);
+  }
+}
 
 // One per scene body, in scene order, from its shape and its mass or density
 // (uniform density): exact polyhedral mass properties (core/mass_properties.hpp).

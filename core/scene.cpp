@@ -518,8 +518,8 @@ class Loader {
       });
       return a;
     }
-    static constexpr Keys<7> keys = {"type",           "restitution", "penetration_tolerance", "step",
-                                     "time_of_impact", "method",      "reuse"};
+    static constexpr Keys<8> keys = {"type",   "restitution",    "penetration_tolerance", "step", "time_of_impact",
+                                     "impact_motion", "method", "reuse"};
     Obj o(v, keys);
     Collisions c;
     if (auto x = o.opt("method")) {
@@ -533,7 +533,15 @@ class Loader {
       const std::string m = str(*x);
       if (m == "bisection") c.time_of_impact = TimeOfImpact::bisection;
       else if (m == "illinois") c.time_of_impact = TimeOfImpact::illinois;
-      else x->expected("\"bisection\" or \"illinois\"");
+      else if (m == "golden_section") c.time_of_impact = TimeOfImpact::golden_section;
+      else if (m == "conservative_advancement") c.time_of_impact = TimeOfImpact::conservative_advancement;
+      else x->expected("\"bisection\", \"illinois\", \"golden_section\" or \"conservative_advancement\"");
+    }
+    if (auto x = o.opt("impact_motion")) {
+      const std::string m = str(*x);
+      if (m == "integrate") c.impact_motion = ImpactMotion::integrate;
+      else if (m == "interpolate") c.impact_motion = ImpactMotion::interpolate;
+      else x->expected("\"integrate\" or \"interpolate\"");
     }
     if (auto x = o.opt("restitution")) c.restitution = number(*x, Range::unit);
     if (auto x = o.opt("penetration_tolerance")) c.penetration_tolerance = number(*x, Range::positive);

@@ -51,22 +51,32 @@ struct AttractionToPoint { Vec3 point{0, 0, 0}; double D = 0; double softening =
 //   penetration_tolerance (m): §2.4.3's tolerance; a step that ends deeper is
 //     retreated (time of impact), shallower contacts get impulses.
 //   step (s): the interval at which contacts are checked (the solver takes its
-//     own steps inside it); halved automatically where a body could move more
-//     than half its inradius in one interval (no tunnelling).
-//   time_of_impact: "bisection" (§2.5.1, the report's) or "illinois" (a
-//     bracketing root finder on the separating-axis depth, §4.3's future work).
+//     own steps inside it); an island with a body that could move more than
+//     half the smallest inradius in it is stepped in shorter sub-steps (no
+//     tunnelling; core/collision_step.hpp).
+//   time_of_impact: how a time of impact is searched for (core/time_of_impact.hpp):
+//     "bisection" (§2.5.1, the report's), "illinois" (a bracketing root finder
+//     on the separating-axis depth, §4.3's future work), "golden_section"
+//     (§4.3.1's line search) or "conservative_advancement" (Mirtich's).
+//   impact_motion: where the search's trial poses come from: "integrate"
+//     (default; the island re-integrated to each trial time, §2.5.1) or
+//     "interpolate" (each body's pose interpolated between the ends of the
+//     sub-step in its backend's algebra, §4.3.2: a quaternion slerp or a rotor
+//     power along a line; the island is integrated once, to the time found).
 //   method: how contacts are found once the separating-axis test says a pair
 //     touches: "manifold" (default; the reference face clipped against the
 //     incident face along the axis of minimum penetration, core/manifold.hpp)
 //     or "report" (fig. 7's vertex-in-body and edge-through-face detector,
 //     which misses faces meeting faces: kept to compare with).
-enum class TimeOfImpact { bisection, illinois };
+enum class TimeOfImpact { bisection, illinois, golden_section, conservative_advancement };
+enum class ImpactMotion { integrate, interpolate };
 enum class ContactMethod { manifold, report };
 struct Collisions {
   double restitution = 0.5;
   double penetration_tolerance = 1e-4;
   double step = 1e-3;
   TimeOfImpact time_of_impact = TimeOfImpact::bisection;
+  ImpactMotion impact_motion = ImpactMotion::integrate;
   ContactMethod method = ContactMethod::manifold;
   // Each body's narrowphase geometry built once per detection and each pair's
   // separating axis kept between detections (issue #14); false rebuilds both

@@ -6,6 +6,7 @@
 // with its algebra and its name. Collide supplies the backend's narrowphase view
 // of a body (Collide::Body) and its bounding-sphere algebra (Collide::Spheres);
 // they are used only when the scene lists the collisions effect.
+#include "core/collision_step.hpp"
 #include "core/collisions.hpp"
 #include "core/particle_system.hpp"
 #include "core/rigid_body.hpp"
@@ -80,90 +81,31 @@ struct Simulation {
   }
 
   // Integrates from t to t_end: straight through without collisions, else in
-  // collision steps with time of impact and response (core/collisions.hpp).
+  // collision steps: the whole world to the end of the step, then its islands'
+  // contacts, time of impact and response (core/collision_step.hpp).
   template <class F, class G>
   static void advance(const Model& m, OdeSolver& solver, F& f, double& t, double t_end, std::vector<double>& y,
                       Profile& profile, G& after) {
     if (!m.collisions) return solver.advance(f, t, t_end, y, profile, after);
     const Contacts& c = *m.collisions;
     const auto bodies = [&](std::vector<double>& yy) { return std::span<double>(yy).subspan(m.offset); };
-    const double tol = c.setup.settings.penetration_tolerance;
-    std::vector<double> y0, ym;  // the last accepted state (§2.5.1's double buffer) and a trial
+    const CollisionStep<Contacts> step(c, m.bodies);
+    std::vector<double> y0;  // the last accepted state (§2.5.1's double buffer)
     while (t < t_end) {
-      double h = std::min(c.setup.settings.step, t_end - t);
-      const double limited = c.step_limit(m.bodies, bodies(y), h);
-      if (limited < h) h = limited, ++c.counters.shortened_steps;
+      const double h = std::min(c.setup.settings.step, t_end - t);
       const double t0 = t, t1 = t_end - (t0 + h) <= 1e-9 * h ? t_end : t0 + h;
+      if (!(t1 > t0)) {
+        std::ostringstream msg;
+        msg << "collisions: no progress at t=" << t0 << ": the step " << h
+            << " s is below the resolution of t (stage integrate)";
+        throw run_error(msg.str());
+      }
       y0 = y;
       solver.advance(f, t, t1, y, profile, after);
       ++c.counters.steps;
       fail_if_nonfinite(m, y, "integrate", t);  // before the broadphase sorts on it
-      Detection d = c.detect(m.bodies, bodies(y), profile);
-      if (d.max_depth > tol) {
-        ScopedStage timed(profile, Stage::time_of_impact);
-        Profile inner;  // the search's integration and narrowphase count as time of impact
-        std::vector<std::pair<int, int>> pairs;
-        for (const auto& hit : d.hits) pairs.emplace_back(hit.a, hit.b);
-        const auto at = [&](double tm) {
-          ym = y0;
-          double tt = t0;
-          solver.advance(f, tt, tm, ym, inner, after);
-          ++c.counters.impact_evaluations;
-          return c.depth_of(m.bodies, bodies(ym), pairs, inner);
-        };
-        ++c.counters.impact_searches;
-        double lo = t0, hi = t1, g_lo = c.depth_of(m.bodies, bodies(y0), pairs, inner), g_hi = d.max_depth;
-        // Illinois steers to a depth near the top of the band: the later the
-        // accepted time, the more a search advances (a resting body sinks
-        // ½ g h² per step, more than a tight tolerance, and needs one search
-        // per (tol − depth) it may sink).
-        const double aim = tol - 0.2 * (tol - std::max(g_lo, 0.0));
-        int side = 0;  // Illinois: which end was kept last (−1 lo, +1 hi)
-        double f_lo = g_lo - aim, f_hi = g_hi - aim;
-        bool found = false;
-        double t_star = t1;
-        // Already deeper than the tolerance at t0 (a correction pushed one body
-        // into a third): no earlier time can be in the band; don't search.
-        const bool searchable = g_lo <= tol;
-        for (int it = 0; searchable && it < kMaxImpactIterations && !found; ++it) {
-          ++c.counters.impact_iterations;
-          double tm = 0.5 * (lo + hi);
-          if (c.setup.settings.time_of_impact == TimeOfImpact::illinois) {
-            const double secant = hi - f_hi * (hi - lo) / (f_hi - f_lo);
-            if (secant > lo && secant < hi) tm = secant;
-          }
-          const double gm = at(tm);
-          if (gm > tol) {
-            hi = tm, g_hi = gm, f_hi = gm - aim;
-            if (side == +1) f_lo *= 0.5;  // Illinois: the same end kept twice
-            side = +1;
-          } else if (gm > 0) {
-            found = true;
-            t_star = tm;
-          } else {
-            lo = tm, g_lo = gm, f_lo = gm - aim;
-            if (side == -1) f_hi *= 0.5;
-            side = -1;
-          }
-        }
-        // No time in the band, or one so close to t0 that the search would make
-        // no progress (Zeno): take the whole step; response and correction
-        // resolve the depth. Progress is then always at least one step.
-        if (found && t_star - t0 <= 1e-6 * (t1 - t0)) found = false;
-        if (!found) {
-          ++c.counters.unresolved_searches;
-          t_star = t1;
-          at(t1);
-        }
-        y.swap(ym);
-        t = t_star;
-        fail_if_nonfinite(m, y, "time_of_impact", t);
-        d = c.detect(m.bodies, bodies(y), inner);
-      }
-      if (!d.hits.empty()) {
-        c.respond(m.bodies, bodies(y), d, t - t0, profile);
-        fail_if_nonfinite(m, y, "response", t);
-      }
+      step.resolve(bodies(y), bodies(y0), t0, t1, profile);
+      t = t1;
     }
   }
   // A collision step names the stage a non-finite state came from (the

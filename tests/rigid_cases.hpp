@@ -299,10 +299,47 @@ TYPED_TEST_P(RigidCases, PhysicalErrorNormReadsTheRotationAngle) {
   check(y_faster, theta);
 }
 
+// The time of impact's interpolated motion (issue #14, §4.3.2): the pose s of
+// the way between two states moves the centre along the line and turns about
+// the one fixed axis at a constant rate, by the shorter way round (a turn by
+// 5.5 rad is the turn by 5.5 − 2π the other way), against Eigen's angle–axis
+// rotations. Tolerance 1e-13: a few roundings of O(1) numbers, and the matrix
+// representation's quaternion read back from a matrix.
+TYPED_TEST_P(RigidCases, InterpolatedPoseTurnsAtAConstantRateTheShorterWay) {
+  using B = typename TypeParam::Backend;
+  using Bodies = typename B::Contacts::BodiesType;
+  const Eigen::Vector3d axis = Eigen::Vector3d(1, -2, 0.5).normalized();
+  const Eigen::Quaterniond q0(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+  const auto state = [](const Eigen::Quaterniond& q, const Eigen::Vector3d& x) {
+    char body[512];
+    std::snprintf(body, sizeof body,
+                  R"({"name": "b", "shape": {"box": [0.1, 0.4, 0.9]}, "mass": 2.0, "position": [%.17g, %.17g, %.17g],)"
+                  R"( "orientation": [%.17g, %.17g, %.17g, %.17g]})",
+                  x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z());
+    const core::Scene scene = rigid_scene(body, "", TypeParam::options, 1.0, 0.5, R"({"method": "rk4", "dt": 1e-3})");
+    auto model = B::build(scene);
+    std::vector<double> y(B::state_size(model));
+    B::initial_state(model, y);
+    return std::make_pair(std::move(model), std::move(y));
+  };
+  const Eigen::Vector3d x0(1, 2, 3), x1(1.5, 1, 3.25);
+  for (const double theta : {2.5, 5.5}) {
+    const double shorter = theta > std::numbers::pi ? theta - 2 * std::numbers::pi : theta;
+    const auto [model, y0] = state(q0, x0);
+    const auto [model1, y1] = state(Eigen::Quaterniond(Eigen::AngleAxisd(theta, axis)) * q0, x1);
+    for (const double s : {0.0, 0.3, 0.5, 1.0}) {
+      const auto pose = Bodies::interpolated_pose(model.bodies, y0, y1, 0, s);
+      const Eigen::Matrix3d expected = (Eigen::AngleAxisd(s * shorter, axis) * q0).toRotationMatrix();
+      EXPECT_LT((pose.rotation - expected).norm(), 1e-13) << "theta " << theta << " s " << s;
+      EXPECT_LT((pose.position - ((1 - s) * x0 + s * x1)).norm(), 1e-15) << s;
+    }
+  }
+}
+
 REGISTER_TYPED_TEST_SUITE_P(RigidCases, AppliedForcesGiveForceAndTorque, FreeFlightFollowsTheParabolaAndKeepsItsSpin,
                             DzhanibekovFlipMatchesTheEllipticPeriod, SymmetricTopPrecessesAtLOverI,
                             RotationDriftGrowsWithoutRenormalisationAndNotWithIt,
                             EulerDistortsTheRotationAsTheReportSaw, ExtremeInertiaAndMassesStayFiniteAndConservative,
-                            PhysicalErrorNormReadsTheRotationAngle);
+                            PhysicalErrorNormReadsTheRotationAngle, InterpolatedPoseTurnsAtAConstantRateTheShorterWay);
 
 }  // namespace gacompare::testing

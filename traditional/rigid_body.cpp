@@ -95,6 +95,15 @@ RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vecto
   return m;
 }
 
+RigidBodies::Model RigidBodies::subset(const Model& m, std::span<const int> which) {
+  Model out;
+  out.rotation = m.rotation;
+  out.renormalise = m.renormalise;
+  out.stride = m.stride;
+  core::copy_bodies(m, which, out);
+  return out;
+}
+
 void RigidBodies::initial_state(const Model& m, std::span<double> y) {
   std::copy(m.y0.begin(), m.y0.end(), y.begin());
 }
@@ -224,6 +233,16 @@ void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sampl
 collision::Pose RigidBodies::pose(const Model& m, std::span<const double> y, std::size_t b) {
   const Layout at = layout(m, b);
   return {rotation(m, y, at), vec_at(y, at.x)};
+}
+
+collision::Pose RigidBodies::interpolated_pose(const Model& m, std::span<const double> y0, std::span<const double> y1,
+                                               std::size_t b, double s) {
+  const Layout at = layout(m, b);
+  const auto quaternion = [&](std::span<const double> y) {
+    return m.rotation == core::Rotation::matrix ? Eigen::Quaterniond(matrix_at(y, at.rot)) : quat_at(y, at.rot).normalized();
+  };
+  const Eigen::Quaterniond q = quaternion(y0).slerp(s, quaternion(y1));  // Eigen takes the shorter arc
+  return {q.toRotationMatrix(), Vec((1 - s) * vec_at(y0, at.x) + s * vec_at(y1, at.x))};
 }
 
 RigidBodies::Motion RigidBodies::motion(const Model& m, std::span<const double> y, std::size_t b) {

@@ -43,6 +43,9 @@ struct RigidBodies {
   };
 
   static Model build(const core::Scene& scene, const std::vector<core::BodyProperties>& props);
+  // Bodies `which` (ascending) of m as a model of their own, in that order
+  // (core::copy_bodies): an island integrated alone. No initial state (y0).
+  static Model subset(const Model& m, std::span<const int> which);
   static std::size_t state_size(const Model& m) { return m.stride * m.bodies.size(); }
   static void initial_state(const Model& m, std::span<double> y);
   static void derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt);
@@ -63,6 +66,11 @@ struct RigidBodies {
   // --- collisions (§2.4–2.5); called only when the scene lists the effect ---
   // The pose the narrowphase places the mesh with (centre of mass, rotation).
   static collision::Pose pose(const Model& m, std::span<const double> y, std::size_t b);
+  // The pose s ∈ [0, 1] of the way from state y0 to y1 (the time-of-impact
+  // search's interpolated motion, §4.3.2): the centre of mass along the line,
+  // the rotation by the quaternion slerp (a matrix read as its quaternion), the shorter way round.
+  static collision::Pose interpolated_pose(const Model& m, std::span<const double> y0, std::span<const double> y1,
+                                           std::size_t b, double s);
   // The contact solver's view of a body (core/collisions.hpp): its motion in
   // the world frame, read from the state once per response. The solver's rows
   // are built once per contact (Arm) and its sweeps then only take dot

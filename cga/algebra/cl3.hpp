@@ -13,6 +13,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cmath>
+#include <numbers>
+
 namespace gacompare::cga {
 
 namespace e3 {  // basis blades of Cl(3,0) as bitmasks
@@ -44,6 +47,20 @@ inline Rotor3 exp(const Bivector3& b) {
   const double t = std::sqrt(t2);
   const double sinc = t < 1e-4 ? 1.0 - t2 / 6.0 + t2 * t2 / 120.0 : std::sin(t) / t;
   return {{std::cos(t), sinc * b.c[0], sinc * b.c[1], sinc * b.c[2]}};
+}
+
+// log of a unit rotor, the inverse of exp: for R = c + B (B a bivector,
+// c² + |B|² = 1), log R = B atan2(|B|, c) / |B|, the bivector whose exp is R
+// with |log R| ≤ π. R^s = exp(s log R) is the rotor that turns s of the way
+// (§4.3.2's interpolation of rotors; the quaternion slerp's twin). Near the
+// identity atan2(t, c)/t is taken from its series; −1 (a turn by 2π, the same
+// rotation as 1) gives π e12.
+inline Bivector3 log(const Rotor3& r) {
+  const double t2 = r.c[1] * r.c[1] + r.c[2] * r.c[2] + r.c[3] * r.c[3];
+  const double t = std::sqrt(t2);
+  if (t == 0) return r.c[0] < 0 ? bivector3(std::numbers::pi, 0, 0) : bivector3(0, 0, 0);
+  const double k = t < 1e-8 * r.c[0] ? (1.0 - t2 / (3.0 * r.c[0] * r.c[0])) / r.c[0] : std::atan2(t, r.c[0]) / t;
+  return {{k * r.c[1], k * r.c[2], k * r.c[3]}};
 }
 
 // R = exp(−Bθ/2) for the rotation by `angle` (rad) about the unit `axis`, right-handed.
