@@ -241,10 +241,12 @@ struct Collider {
       PairHit h{i, j, {}, {}};
       if (setup.settings.reuse) {
         const int a = world[i], b = world[j];
-        collision::SatHint hint = hints_.recall(a, b);
+        collision::SatHint* remembered = hints_.find(a, b);
+        collision::SatHint hint = remembered ? *remembered : collision::SatHint{};
         h.sat = collision::narrowphase<NarrowBody>(shape(a, [&] { return pose[i]; }), shape(b, [&] { return pose[j]; }),
                                                    method, &h.features, &hint);
-        hints_.keep(a, b, hint);
+        if (remembered) *remembered = hint;
+        else hints_.add(a, b, hint);
         counters.narrowphase_axes_kept += hint.kept;
       } else {
         h.sat = collision::narrowphase<NarrowBody>(placed(pose, world, i), placed(pose, world, j), method, &h.features);

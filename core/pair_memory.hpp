@@ -6,9 +6,9 @@
 // and one that comes back starts afresh. Detections of a part of the world
 // (an island stepped alone) read and update what the round holds.
 //
-// One sorted flat array, not a hash map: a pair met again is found by binary
-// search and updated in place; a pair met for the first time waits in a
-// second array until the next round merges it in. The arrays keep their
+// One sorted flat array, not a hash map: a pair met again is found by one
+// binary search and read and updated in place; a pair met for the first time
+// waits in a second array until the next round merges it in. The arrays keep their
 // storage, so a round allocates nothing once the number of pairs has settled.
 #include <algorithm>
 #include <cstdint>
@@ -26,25 +26,26 @@ class PairMemory {
     // A pair met twice while new: its last value wins.
     const auto last = std::unique(fresh_.rbegin(), fresh_.rend(), [](const Entry& x, const Entry& y) { return x.key == y.key; });
     fresh_.erase(fresh_.begin(), last.base());
-    const std::size_t old = known_.size();
-    known_.insert(known_.end(), fresh_.begin(), fresh_.end());
-    std::inplace_merge(known_.begin(), known_.begin() + static_cast<long>(old), known_.end(),
-                       [](const Entry& x, const Entry& y) { return x.key < y.key; });
+    merged_.resize(known_.size() + fresh_.size());
+    std::merge(known_.begin(), known_.end(), fresh_.begin(), fresh_.end(), merged_.begin(),
+               [](const Entry& x, const Entry& y) { return x.key < y.key; });
+    known_.swap(merged_);
     fresh_.clear();
     ++round_;
   }
-  // What the pair (i, j) kept last, or T{} (the order of i and j matters: a
-  // value may refer to "a" and "b").
-  T recall(int i, int j) const {
-    const auto it = find(known_, key(i, j));
-    return it != known_.end() ? it->value : T{};
-  }
-  void keep(int i, int j, const T& value) {
+  // The pair (i, j)'s value from an earlier round, to read and update in
+  // place (valid until next()), or nullptr for a pair met for the first time
+  // (the order of i and j matters: a value may refer to "a" and "b"). Either
+  // way the pair counts as met in this round.
+  T* find(int i, int j) {
     const std::uint64_t k = key(i, j);
-    const auto it = find(known_, k);
-    if (it != known_.end()) *it = {k, value, round_};
-    else fresh_.push_back({k, value, round_});
+    const auto it = std::lower_bound(known_.begin(), known_.end(), k, [](const Entry& e, std::uint64_t x) { return e.key < x; });
+    if (it == known_.end() || it->key != k) return nullptr;
+    it->round = round_;
+    return &it->value;
   }
+  // A pair met for the first time: readable from the next round on.
+  void add(int i, int j, const T& value) { fresh_.push_back({key(i, j), value, round_}); }
   std::size_t size() const { return known_.size(); }
 
  private:
@@ -56,12 +57,7 @@ class PairMemory {
   static std::uint64_t key(int i, int j) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) | static_cast<std::uint32_t>(j);
   }
-  template <class V>
-  static auto find(V& entries, std::uint64_t k) {
-    const auto it = std::lower_bound(entries.begin(), entries.end(), k, [](const Entry& e, std::uint64_t x) { return e.key < x; });
-    return it != entries.end() && it->key == k ? it : entries.end();
-  }
-  std::vector<Entry> known_, fresh_;
+  std::vector<Entry> known_, fresh_, merged_;
   std::uint64_t round_ = 0;
 };
 
