@@ -252,7 +252,10 @@ struct Collider {
         h.sat = collision::narrowphase<NarrowBody>(placed(pose, world, i), placed(pose, world, j), method, &h.features);
         counters.narrowphase_shapes += 2;
       }
-      if (!h.sat.intersect) continue;
+      // A pair within the touching band is in contact too (it has contacts):
+      // its yes/no is rounding's (core/collision.hpp), and a box resting
+      // exactly on another fell for a step whenever it rounded to apart.
+      if (!h.sat.intersect && h.features.empty()) continue;
       d.max_depth = std::max(d.max_depth, h.sat.depth);
       d.hits.push_back(std::move(h));
     }

@@ -175,6 +175,11 @@ PairContact narrowphase(const typename Body::Shape& sa, const typename Body::Sha
     if (result.depth >= -band) {
       // Within the band: an early exit (at a gap > 0) left the axes incomplete.
       if (result.depth < 0 && early) result = separating_axis(A, B, false, &(axes = {}), hint);
+    }
+    // Contacts for a pair overlapping or touching (the whole test's gap within
+    // the band), never for one apart: whether the test stopped early, and at
+    // which axis, then cannot change what a pair reports.
+    if (result.depth >= -band) {
       std::vector<FeatureContact> local;
       std::vector<FeatureContact>& found = contacts ? *contacts : local;
       const std::size_t first = found.size();

@@ -316,7 +316,34 @@ TYPED_TEST_P(NarrowphaseCacheCases, ShapesMeasureDistancesInMetresAtEveryScale) 
   }
 }
 
-REGISTER_TYPED_TEST_SUITE_P(NarrowphaseCacheCases, SharedShapesGiveTheAnswersOfRebuiltOnes,
+// Touching (core/narrowphase.hpp): a pair within the touching band has its
+// contacts whichever way its yes/no rounds, and one beyond it has none, with or
+// without an axis remembered from a pair far apart (which separates it at once:
+// the contacts must not depend on where the test stopped). Equal cubes face to
+// face at gaps −1e-5 (overlapping), 0, 0.1 and 0.9 of the band, and 2 and 10
+// bands; their size is 0.433, the band 1e-9 of it.
+TYPED_TEST_P(NarrowphaseCacheCases, TouchingPairsHaveTheirContacts) {
+  using Body = typename TypeParam::Body;
+  using Shape = typename Body::Shape;
+  const core::Mesh cube = core::make_box({0.25, 0.25, 0.25});
+  const double band = collision::kTouchingBand * cube.size();
+  for (const double gap : {-1e-5, 0.0, 0.1 * band, 0.9 * band, 2 * band, 10 * band}) {
+    const Shape a(Placed{&cube, {}}), far(Placed{&cube, {Mat3::Identity(), Vec3(1, 0, 0)}});
+    const Shape b(Placed{&cube, {Mat3::Identity(), Vec3(0.25 + gap, 0, 0)}});
+    collision::SatHint hint;
+    collision::narrowphase<Body>(a, far, Method::sat_then_manifold, nullptr, &hint);
+    ASSERT_EQ(hint.feature, Feature::face_a);
+    std::vector<FeatureContact> cold, warm;
+    const PairContact c = collision::narrowphase<Body>(a, b, Method::sat_then_manifold, &cold);
+    const PairContact w = collision::narrowphase<Body>(a, b, Method::sat_then_manifold, &warm, &hint);
+    EXPECT_EQ(cold.size(), gap <= band ? 4u : 0u) << "gap " << gap;
+    expect_same(warm, cold, "gap " + std::to_string(gap));
+    EXPECT_EQ(w.intersect, c.intersect) << "gap " << gap;
+    for (const auto& p : cold) EXPECT_NEAR(p.depth, -gap, 1e-15) << "gap " << gap;  // exact in binary but gap: 1e-15
+  }
+}
+
+REGISTER_TYPED_TEST_SUITE_P(NarrowphaseCacheCases, TouchingPairsHaveTheirContacts, SharedShapesGiveTheAnswersOfRebuiltOnes,
                             RememberedAxesGiveTheAnswersOfColdOnes, HillClimbingFindsTheScansSupport,
                             WalkingTheGaussMapMeetsEveryCrossing, ShapesMeasureDistancesInMetresAtEveryScale);
 
