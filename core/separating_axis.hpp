@@ -42,6 +42,10 @@
 namespace gacompare::collision {
 
 inline constexpr double kParallelSin = 1e-8;
+// From this many edges of b on, edge pairs are found by walking the Gauss map
+// (walk_edge below), not by testing every pair: measured, bench/narrowphase_bench
+// BM_manifold_boxes and BM_contacts_manifold (README "What detection costs").
+inline constexpr int kWalkEdges = 16;
 inline constexpr long double kParallelSinReference = 2e-10L;
 
 // The local frame: midway between the two bodies' positions.
@@ -282,7 +286,11 @@ PairContact separating_axis(const Body& a, const Body& b, bool early_exit = fals
   if (faces(a, b, Feature::face_a) || faces(b, a, Feature::face_b)) return done();
   const std::vector<ShapeEdge>& ea = a.shape().edges();
   const std::vector<ShapeEdge>& eb = b.shape().edges();
-  const bool walk = b.mesh().corners_only();  // every vertex of b a corner: its regions tile the sphere
+  // Every vertex of b a corner (its regions tile the sphere), and enough edges
+  // for the walk to pay: testing a box's 12 edges is cheaper than walking
+  // them, and boxes meet face to face, where their maps share arcs and every
+  // walk ends where it cannot be trusted.
+  const bool walk = b.mesh().corners_only() && static_cast<int>(eb.size()) >= kWalkEdges;
   for (int i = 0; i < static_cast<int>(ea.size()); ++i) {
     const ShapeEdge& x = ea[i];
     const Vec3 q = x.p - delta;
@@ -291,8 +299,12 @@ PairContact separating_axis(const Body& a, const Body& b, bool early_exit = fals
       if (walked < 0) return done();
       if (walked > 0) continue;
     }
-    for (int j = 0; j < static_cast<int>(eb.size()); ++j)
+    for (int j = 0; j < static_cast<int>(eb.size()); ++j) {
+      // spans_minkowski_face's first test here, where it rejects most pairs
+      // without a call (−c·(b × a) with b × a = −x.d).
+      if (!(eb[j].n0.dot(x.d) * eb[j].n1.dot(x.d) < 0)) continue;
       if (edge(i, j, x, q, eb[j])) return done();
+    }
   }
   return done();
 }

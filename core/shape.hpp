@@ -56,7 +56,7 @@ namespace gacompare::collision {
 // From this many vertices on, hill climbing finds support points; below, the
 // scan is cheaper (bench/narrowphase_bench.cpp BM_support_*, README "What
 // detection costs").
-inline constexpr int kHillClimbVertices = 32;
+inline constexpr int kHillClimbVertices = 40;
 
 // A feature edge relative to its body's position: a point, the direction, and
 // the normals of its two faces (its arc on the Gauss map). The triangle of
