@@ -241,12 +241,10 @@ struct Collider {
       PairHit h{i, j, {}, {}};
       if (setup.settings.reuse) {
         const int a = world[i], b = world[j];
-        collision::SatHint* remembered = hints_.find(a, b);
-        collision::SatHint hint = remembered ? *remembered : collision::SatHint{};
-        h.sat = collision::narrowphase<NarrowBody>(shape(a, [&] { return pose[i]; }), shape(b, [&] { return pose[j]; }),
-                                                   method, &h.features, &hint);
-        if (remembered) *remembered = hint;
-        else hints_.add(a, b, hint);
+        const Shape& sa = shape(a, [&] { return pose[i]; });
+        const Shape& sb = shape(b, [&] { return pose[j]; });
+        collision::SatHint& hint = hints_.at(a, b);
+        h.sat = collision::narrowphase<NarrowBody>(sa, sb, method, &h.features, &hint);
         counters.narrowphase_axes_kept += hint.kept;
       } else {
         h.sat = collision::narrowphase<NarrowBody>(placed(pose, world, i), placed(pose, world, j), method, &h.features);
