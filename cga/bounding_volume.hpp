@@ -1,15 +1,16 @@
 #pragma once
 // Bounding spheres, conformal algebra (issue #6, §2.4.1): the SphereOps policy
-// that core/bounding_volume.hpp (exhaustive search, Welzl) and
-// core/broadphase.hpp (sort and sweep) run on. A sphere is the dual sphere
-// S = C − ½ρ²n (§2.4.1 after [7]), a Cl(4,1) vector (5 numbers), kept
-// normalised to S·n = −1 by every constructor here. Twin:
+// that core/bounding_volume.hpp (exhaustive search, Welzl), core/broadphase.hpp
+// (sort and sweep) and core/tree_broadphase.hpp (the sphere tree) run on. A
+// sphere is the dual sphere S = C − ½ρ²n (§2.4.1 after [7]), a Cl(4,1) vector
+// (5 numbers), kept normalised to S·n = −1 by every constructor here. Twin:
 // traditional/bounding_volume.hpp, with the same names in the same order: put
 // them side by side and only the algebra differs.
 #include "cga/geometry/inside.hpp"
 #include "cga/geometry/meet.hpp"
 #include "core/bounding_volume.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -73,6 +74,46 @@ struct SphereOps {
   // 10-component bivector to do it; the simulation runs the best form of the
   // algebra, not the report's (issue #13: 7× the twin's time by the meet).
   static bool overlap(const Sphere& s1, const Sphere& s2);
+
+  // The sphere trees' node operations (issue #14, §4.2.2; core/tree_broadphase.hpp),
+  // all from inner products of normalised dual spheres (S·n = −1, which every
+  // constructor here keeps): S1² = ρ1², S2² = ρ2², S1·S2 = ½(ρ1² + ρ2² − d²).
+  // The smallest sphere enclosing two: one of them when it holds the other;
+  // else the affine combination (1−t)S1 + tS2 (still S·n = −1) is a dual
+  // sphere centred at (1−t)c1 + tc2, and adding ½(its square − R²) n (n² = 0,
+  // n·S = −1) sets its square to R² without moving the centre:
+  //   S = (1−t)S1 + tS2 + ½((1−t)² ρ1² + t² ρ2² + 2t(1−t) S1·S2 − R²) n,
+  //   R = ½(d + ρ1 + ρ2), t = (R − ρ1)/d.
+  // No centre is read and no point is up-projected; the twin forms the same
+  // sphere from the centres' difference vector.
+  static Sphere enclosing(const Sphere& s1, const Sphere& s2) {
+    const double q1 = scalar_product(s1, s1), q2 = scalar_product(s2, s2), q12 = scalar_product(s1, s2);
+    const double r1 = std::sqrt(std::max(q1, 0.0)), r2 = std::sqrt(std::max(q2, 0.0));
+    const double d = std::sqrt(std::max(q1 + q2 - 2 * q12, 0.0));
+    if (d + r2 <= r1) return s1;
+    if (d + r1 <= r2) return s2;
+    const double R = 0.5 * (d + r1 + r2), t = (R - r1) / d, u = 1 - t;
+    const double square = u * u * q1 + t * t * q2 + 2 * t * u * q12;
+    return s1 * u + s2 * t + n_inf() * (0.5 * (square - R * R));
+  }
+  // The outer ball holds the inner one: d ≤ ρo − ρi ⟺ So·Si ≥ ρo ρi (with
+  // ρo ≥ ρi, by S1·S2 above); squared, three inner products and no root.
+  // The sign is that of ½((ρo − ρi)² − d²), read off numbers of size ρ², so
+  // nearly equal concentric spheres are told apart only to a room of
+  // ~√ε·ρ (the twin: ~ε·ρ); the trees test rooms of kFatMargin·ρ.
+  static bool encloses(const Sphere& outer, const Sphere& inner) {
+    const double qo = scalar_product(outer, outer), qi = scalar_product(inner, inner), q = scalar_product(outer, inner);
+    return qo >= qi && q >= 0 && q * q >= qo * qi;
+  }
+  // The radius larger by `by`: S − ½((ρ + by)² − ρ²) n; n changes only the
+  // n-part, so the centre stays.
+  static Sphere grown(const Sphere& s, double by) {
+    const double r = std::sqrt(std::max(scalar_product(s, s), 0.0));
+    return s - n_inf() * (by * (r + 0.5 * by));
+  }
+  // ρ² = S², the tree's cost (proportional to the surface area): one inner product.
+  static double radius_squared(const Sphere& s) { return scalar_product(s, s); }
+
   static Vec3 centre(const Sphere& s) { return cga::centre(s); }
   static double radius(const Sphere& s) { return cga::radius(s); }
 };

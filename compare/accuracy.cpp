@@ -190,7 +190,8 @@ AccuracyPlan find_equal_accuracy(const core::Scene& written, double target, cons
   return plan;
 }
 
-SceneResult compare_at_accuracy(const core::Scene& written, const AccuracyPlan& plan, int repeats) {
+SceneResult compare_at_accuracy(const core::Scene& written, const AccuracyPlan& plan, int repeats,
+                                const Progress& progress) {
   const core::Scene scene = accuracy_scene(written);
   SceneResult result{scene, std::vector<BackendResult>(plan.backends.size())};
   const std::size_t n = plan.backends.size();
@@ -208,6 +209,7 @@ SceneResult compare_at_accuracy(const core::Scene& written, const AccuracyPlan& 
                state_difference(run.samples.back(), br.run.samples.back()).value != StateErrors{}.value)
         br.deterministic = false;
     }
+    if (progress) progress(r + 1, repeats, result);
   }
   return result;
 }

@@ -88,7 +88,8 @@ AccuracyPlan find_equal_accuracy(const core::Scene& scene, double target, const 
 
 // Like compare_scene, on accuracy_scene(scene), but each backend runs with its
 // plan's solver; the result's scene keeps the solver as written.
-SceneResult compare_at_accuracy(const core::Scene& scene, const AccuracyPlan& plan, int repeats);
+SceneResult compare_at_accuracy(const core::Scene& scene, const AccuracyPlan& plan, int repeats,
+                                const Progress& progress = {});
 
 // The report section: per backend the setting found, achieved error, steps,
 // median time (min–max) and the cga/traditional ratio over paired repeats.

@@ -41,75 +41,84 @@ std::string line_name(Measure m, const char* position_name, const char* rest) {
   return std::string(measure_words(m)) + rest + " (" + std::string(measure_unit(m)) + ")";
 }
 
-// The checks of one measure: the worst ratio of a difference to its bound over
-// every object and every pair of samples compared, and where it was.
-struct Worst {
-  double value = 0, bound = INFINITY, ratio = 0;
-  std::string where;
-};
+}  // namespace
 
-// How far each measure of each object may move when no point of a body may
-// move more than `d` (m): the position by d; the orientation by d / r (a turn
-// by θ moves a point at r from the centre of mass by 2r sin(θ/2) ≤ rθ, r the
-// body's farthest vertex); the velocity by d / Δt and the angular velocity by
-// d / (r Δt), Δt the scene's output interval: the speed difference that would
-// part the two states by d within one interval. Static bodies never move and
-// are left out.
-class Bounds {
- public:
-  Bounds(const core::Scene& scene, double d) : scene_(scene), d_(d), radii_(body_radii(scene)) {}
-
-  void add(const core::Sample& a, const core::Sample& b) {
-    for (std::size_t i = 0; i < std::min(a.particles.size(), b.particles.size()); ++i) {
-      const StateErrors e = particle_difference(a.particles[i], b.particles[i]);
-      const std::string who = "particle '" + scene_.particles[i].name + "'";
-      for (const Measure m : {Measure::position, Measure::velocity}) take(m, e[m], allowed(m, 1), who, a.t);
-    }
-    for (std::size_t i = 0; i < std::min(a.bodies.size(), b.bodies.size()); ++i) {
-      if (scene_.bodies[i].is_static) continue;
-      const StateErrors e = body_difference(a.bodies[i], b.bodies[i]);
-      const std::string who = "body '" + scene_.bodies[i].name + "' (r = " + fmt(radii_[i]) + " m)";
-      for (const Measure m : kMeasures) take(m, e[m], allowed(m, radii_[i]), who, a.t);
-    }
-  }
-
-  // The check line of measure m, or nothing where no object has it.
-  std::optional<CheckLine> line(Measure m, const std::string& backend, const std::string& what,
-                                const std::string& d_name) const {
-    const Worst& w = worst_[static_cast<std::size_t>(m)];
-    if (w.where.empty()) return std::nullopt;
-    static constexpr const char* rule[] = {"", " / r", " / Δt", " / (r Δt)"};
-    CheckLine l = bound(scene_.name, backend, what, w.value, w.bound);
-    l.note = (w.value == 0 ? std::string("equal everywhere") : "worst: " + w.where) + "; bound " + d_name +
-             rule[static_cast<std::size_t>(m)];
+CheckLine time_ratio_line(const std::string& scene, const std::string& backend, const std::string& what,
+                          std::span<const double> before, std::span<const double> after,
+                          std::optional<double> max_ratio, const std::string& why_none) {
+  const RatioInterval r = bootstrap_unpaired_ratio(before, after);
+  CheckLine l{scene, backend, what, r.ratio, max_ratio.value_or(0),
+              max_ratio ? CheckLine::Verdict::pass : CheckLine::Verdict::info, ""};
+  if (std::isnan(r.lo)) {
+    l.note = "no interval: " + (why_none.empty() ? std::string("fewer than 2 repeats") : why_none);
+    if (max_ratio) l.verdict = CheckLine::Verdict::fail;
     return l;
   }
-
- private:
-  double allowed(Measure m, double r) const {
-    const double dt = scene_.output_every;
-    switch (m) {
-      case Measure::position: return d_;
-      case Measure::orientation: return d_ / r;
-      case Measure::velocity: return d_ / dt;
-      case Measure::angular_velocity: return d_ / (r * dt);
-    }
-    return d_;
+  l.note = "95% interval [" + fmt(r.lo) + ", " + fmt(r.hi) + "], " +
+           (r.lo <= 1 && 1 <= r.hi ? "within noise" : r.lo > 1 ? "slower" : "faster");
+  if (max_ratio && r.lo > *max_ratio) {
+    l.verdict = CheckLine::Verdict::fail;
+    l.note += "; the whole interval lies above " + fmt(*max_ratio);
   }
+  if (!max_ratio) l.note += "; reported, not checked (--max-time-ratio R checks it)";
+  return l;
+}
 
-  void take(Measure m, double value, double limit, const std::string& who, double t) {
-    Worst& w = worst_[static_cast<std::size_t>(m)];
-    const double ratio = value / limit;
-    // The first object, then a larger ratio; a NaN (a diverged run) wins and stays.
-    if (!w.where.empty() && (std::isnan(w.ratio) || !(std::isnan(ratio) || ratio > w.ratio))) return;
-    w = {value, limit, ratio, who + " at t = " + fmt(t) + " s"};
+StateObjects state_objects(const core::Scene& scene) {
+  StateObjects o{scene.name, scene.output_every, {}, {}};
+  for (const auto& p : scene.particles) o.particles.push_back(p.name);
+  const std::vector<double> radii = body_radii(scene);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+    o.bodies.push_back({scene.bodies[i].name, radii[i], scene.bodies[i].is_static});
+  return o;
+}
+
+void StateBounds::add(const core::Sample& a, const core::Sample& b) {
+  for (std::size_t i = 0; i < std::min({a.particles.size(), b.particles.size(), objects_.particles.size()}); ++i) {
+    const StateErrors e = particle_difference(a.particles[i], b.particles[i]);
+    const std::string who = "particle '" + objects_.particles[i] + "'";
+    for (const Measure m : {Measure::position, Measure::velocity}) take(m, e[m], allowed(m, 1), who, a.t);
   }
+  for (std::size_t i = 0; i < std::min({a.bodies.size(), b.bodies.size(), objects_.bodies.size()}); ++i) {
+    const auto& body = objects_.bodies[i];
+    if (body.is_static) continue;
+    const StateErrors e = body_difference(a.bodies[i], b.bodies[i]);
+    const std::string who = "body '" + body.name + "' (r = " + fmt(body.radius) + " m)";
+    for (const Measure m : kMeasures) take(m, e[m], allowed(m, body.radius), who, a.t);
+  }
+}
 
-  const core::Scene& scene_;
-  double d_;
-  std::vector<double> radii_;
-  std::array<Worst, 4> worst_;
-};
+std::optional<CheckLine> StateBounds::line(Measure m, const std::string& backend, const std::string& what,
+                                           const std::string& d_name) const {
+  const Worst& w = worst_[static_cast<std::size_t>(m)];
+  if (w.where.empty()) return std::nullopt;
+  static constexpr const char* rule[] = {"", " / r", " / Δt", " / (r Δt)"};
+  CheckLine l = bound(objects_.scene, backend, what, w.value, w.bound);
+  l.note = (w.value == 0 ? std::string("equal everywhere") : "worst: " + w.where) + "; bound " + d_name +
+           rule[static_cast<std::size_t>(m)];
+  return l;
+}
+
+double StateBounds::allowed(Measure m, double r) const {
+  const double dt = objects_.output_every;
+  switch (m) {
+    case Measure::position: return d_;
+    case Measure::orientation: return d_ / r;
+    case Measure::velocity: return d_ / dt;
+    case Measure::angular_velocity: return d_ / (r * dt);
+  }
+  return d_;
+}
+
+void StateBounds::take(Measure m, double value, double limit, const std::string& who, double t) {
+  Worst& w = worst_[static_cast<std::size_t>(m)];
+  const double ratio = value / limit;
+  // The first object, then a larger ratio; a NaN (a diverged run) wins and stays.
+  if (!w.where.empty() && (std::isnan(w.ratio) || !(std::isnan(ratio) || ratio > w.ratio))) return;
+  w = {value, limit, ratio, who + " at t = " + fmt(t) + " s"};
+}
+
+namespace {
 
 // A baseline run's final sample as a Sample of `scene`, with `velocities` false
 // when it stores none (baselines stored before velocities were); nullopt when
@@ -177,16 +186,18 @@ json baseline_json(const SceneResult& r) {
                     {"final", {{"t", b.run.samples.empty() ? 0.0 : b.run.samples.back().t},
                                {"particles", particles},
                                {"bodies", bodies}}},
-                    {"wall_seconds", spread(b.wall_seconds).median}});
+                    {"wall_seconds", spread(b.wall_seconds).median},
+                    {"wall_seconds_each_repeat", b.wall_seconds}});
   }
   return {{"scene", r.scene.name},
           {"sha256", r.scene.sha256},
           {"tool", {{"version", tool_version()}}},
-          {"machine", {{"cpu", machine_info().cpu}, {"compiler", machine_info().compiler}}},
+          {"machine", machine_json(machine_info())},
           {"runs", runs}};
 }
 
-std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlohmann::json>& baseline) {
+std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlohmann::json>& baseline,
+                                   std::optional<double> max_time_ratio) {
   std::vector<CheckLine> out;
   const auto& spec = r.scene.check;
   const std::string& name = r.scene.name;
@@ -210,7 +221,7 @@ std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlo
     for (auto& l : sanity_checks(r.scene, run)) out.push_back(std::move(l));
   }
   if (r.backends.size() > 1) {  // the first backend against each other one but Bullet (compare/metrics.hpp says why)
-    Bounds between(r.scene, spec.max_divergence);
+    StateBounds between(state_objects(r.scene), spec.max_divergence);
     for (std::size_t b = 1; b < r.backends.size(); ++b) {
       if (r.backends[b].run.backend == "bullet") continue;
       const auto& x = r.backends[0].run.samples;
@@ -245,7 +256,7 @@ std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlo
                      CheckLine::Verdict::fail, "the scene's particles or bodies differ from the baseline's"});
       continue;
     }
-    Bounds from(r.scene, spec.baseline_tolerance);
+    StateBounds from(state_objects(r.scene), spec.baseline_tolerance);
     from.add(b.run.samples.back(), *stored);
     for (const Measure m : kMeasures) {
       const auto what = line_name(m, "distance from baseline, final state (m)", " from baseline, final state");
@@ -256,9 +267,18 @@ std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlo
       out.push_back({name, b.run.backend, "velocities from baseline", 0, 0, CheckLine::Verdict::info,
                      "not checked: this baseline stores no velocities (stored before they were); refresh it with --update"});
     const double then = base->value("wall_seconds", 0.0), now = spread(b.wall_seconds).median;
-    if (then > 0)
-      out.push_back({name, b.run.backend, "time / baseline time", now / then, 0, CheckLine::Verdict::info,
-                     "timing is reported, never checked"});
+    if (!max_time_ratio) {
+      if (then > 0)
+        out.push_back({name, b.run.backend, "time / baseline time", now / then, 0, CheckLine::Verdict::info,
+                       "reported, not checked (--max-time-ratio R checks it)"});
+      continue;
+    }
+    std::vector<double> before;
+    if (base->contains("wall_seconds_each_repeat")) before = base->at("wall_seconds_each_repeat").get<std::vector<double>>();
+    out.push_back(time_ratio_line(name, b.run.backend, "time / baseline time", before, b.wall_seconds,
+                                  max_time_ratio,
+                                  before.size() < 2 ? "this baseline stores no repeats' times; refresh it with --update"
+                                                    : ""));
   }
   return out;
 }

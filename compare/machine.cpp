@@ -6,12 +6,18 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <sched.h>
+#include <stdlib.h>
+#include <thread>
 
 #ifndef GACOMPARE_VERSION
 #define GACOMPARE_VERSION "unknown"
 #endif
 #ifndef GACOMPARE_BUILD_TYPE
 #define GACOMPARE_BUILD_TYPE "unknown"
+#endif
+#ifndef GACOMPARE_CXX_FLAGS
+#define GACOMPARE_CXX_FLAGS "unknown"
 #endif
 
 namespace gacompare::compare {
@@ -43,6 +49,20 @@ MachineInfo machine_info() {
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &utc);
   m.date = buf;
   m.build_type = GACOMPARE_BUILD_TYPE;
+  m.flags = GACOMPARE_CXX_FLAGS;
+  m.logical_cpus = static_cast<int>(std::thread::hardware_concurrency());
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) m.usable_cpus = CPU_COUNT(&set);
+  m.build = build_info();
+  m = finished(m);
+  m.load_average = m.load_average_end;
+  return m;
+}
+
+MachineInfo finished(MachineInfo m) {
+  double load[3];
+  if (getloadavg(load, 3) == 3) m.load_average_end = {load[0], load[1], load[2]};
   return m;
 }
 

@@ -4,9 +4,12 @@
 #include "compare/accuracy.hpp"
 #include "compare/collide.hpp"
 #include "compare/check.hpp"
+#include "compare/cli_args.hpp"
+#include "compare/diff.hpp"
 #include "compare/machine.hpp"
 #include "compare/report.hpp"
 #include "compare/runner.hpp"
+#include "compare/suggest.hpp"
 #include "compare/sweep.hpp"
 #include "core/error.hpp"
 #include "core/scene.hpp"
@@ -22,6 +25,7 @@
 #include <iostream>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <unistd.h>
 
 #ifndef GACOMPARE_DATA_DIR
@@ -37,6 +41,11 @@ std::vector<core::Scene> load_all(const std::vector<std::string>& files) {
   std::vector<core::Scene> scenes;
   std::set<std::string> names;
   for (const auto& f : files) {
+    std::error_code ec;
+    const auto& backends = compare::backend_names();
+    if (std::find(backends.begin(), backends.end(), f) != backends.end() && !fs::is_regular_file(f, ec))
+      throw input_error("'" + f + "' is a backend, not a scene file: give --backends comma-separated before the "
+                        "scenes (--backends traditional,cga) or after them");
     scenes.push_back(core::load_scene(f));
     if (!names.insert(scenes.back().name).second)
       throw input_error(f + ": scene name '" + scenes.back().name + "' is used by another scene on the command line");
@@ -50,23 +59,36 @@ fs::path default_out(const std::string& what) {
   return fs::path("reports") / (what + "-" + date);
 }
 
+// One line on stderr per round of repeats of each scene, whether stderr is a
+// terminal or a log file (a long run must not look hung); nothing with --quiet.
+compare::Progress progress_line(const std::string& scene, std::size_t k, std::size_t n, bool quiet) {
+  if (quiet) return {};
+  return [scene, k, n](int round, int rounds, const compare::SceneResult& so_far) {
+    std::ostringstream o;
+    o << "gacompare: [" << k + 1 << "/" << n << "] " << scene << ": repeat " << round << "/" << rounds;
+    for (const auto& b : so_far.backends)
+      if (!b.wall_seconds.empty()) o << ", " << b.run.backend << " " << compare::format_seconds(b.wall_seconds.back());
+    std::cerr << o.str() << "\n";
+  };
+}
+
 int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std::string>& backends,
                    compare::Selection selection, int repeats, fs::path out, bool quiet) {
   if (out.empty()) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
+  const compare::MachineInfo machine = compare::machine_info();  // the load before this run adds its own
   std::vector<compare::SceneResult> results;
   bool failed = false;
-  for (const auto& scene : scenes) {
-    if (!quiet)
-      std::cerr << "gacompare: " << scene.name << ": " << repeats << " repeat(s) of "
-                << compare::backends_for(scene, backends, selection).size() << " backend(s)\n";
-    results.push_back(compare::compare_scene(scene, backends, repeats, selection));
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    const auto& scene = scenes[k];
+    results.push_back(compare::compare_scene(scene, backends, repeats, selection,
+                                             progress_line(scene.name, k, scenes.size(), quiet)));
     for (const auto& b : results.back().backends)
       if (b.run.error) {
         std::cerr << "gacompare: " << scene.name << ": " << b.run.backend << ": " << *b.run.error << "\n";
         failed = true;
       }
   }
-  compare::write_reports(out, results, compare::machine_info(), repeats);
+  compare::write_reports(out, results, compare::finished(machine), repeats);
   std::cout << out.string() << "\n";
   return failed ? 1 : 0;
 }
@@ -76,6 +98,7 @@ int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std
 int run_at_accuracy(const std::vector<core::Scene>& scenes, std::vector<std::string> backends, double target,
                     int repeats, fs::path out, bool quiet) {
   if (out.empty()) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
+  const compare::MachineInfo machine = compare::machine_info();
   std::erase(backends, "bullet");  // no tolerance to search: Bullet steps at a fixed 1/240 s with its own contacts
   if (backends.empty()) throw input_error("--accuracy: compares traditional and cga; name at least one of them");
   for (const auto& scene : scenes)  // refuse before anything runs
@@ -83,19 +106,20 @@ int run_at_accuracy(const std::vector<core::Scene>& scenes, std::vector<std::str
   std::vector<compare::SceneResult> results;
   std::vector<compare::AccuracyPlan> plans;
   bool failed = false;
-  for (const auto& scene : scenes) {
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    const auto& scene = scenes[k];
     plans.push_back(compare::find_equal_accuracy(scene, target, backends, out / "accuracy.json", quiet));
     if (!quiet)
-      std::cerr << "gacompare: " << scene.name << ": settings " << (plans.back().reused ? "reused" : "found")
-                << "; " << repeats << " repeat(s) of " << backends.size() << " backend(s)\n";
-    results.push_back(compare::compare_at_accuracy(scene, plans.back(), repeats));
+      std::cerr << "gacompare: " << scene.name << ": settings " << (plans.back().reused ? "reused" : "found") << "\n";
+    results.push_back(
+        compare::compare_at_accuracy(scene, plans.back(), repeats, progress_line(scene.name, k, scenes.size(), quiet)));
     for (const auto& b : results.back().backends)
       if (b.run.error) {
         std::cerr << "gacompare: " << scene.name << ": " << b.run.backend << ": " << *b.run.error << "\n";
         failed = true;
       }
   }
-  compare::write_reports(out, results, compare::machine_info(), repeats, target);
+  compare::write_reports(out, results, compare::finished(machine), repeats, target);
   std::string all;
   for (std::size_t k = 0; k < results.size(); ++k) {
     const std::string section = compare::accuracy_section_md(plans[k], results[k]);
@@ -124,38 +148,57 @@ std::optional<nlohmann::json> read_baseline(const fs::path& file) {
   }
 }
 
+// The table of check lines on stdout and "WHAT: n passed, m failed"; 1 when one failed.
+int print_lines(const std::vector<compare::CheckLine>& lines, const char* what) {
+  std::cout << compare::check_table(lines);
+  auto count = [&](compare::CheckLine::Verdict v) {
+    return std::count_if(lines.begin(), lines.end(), [&](const auto& l) { return l.verdict == v; });
+  };
+  const auto failed = count(compare::CheckLine::Verdict::fail);
+  std::cout << "\n" << what << ": " << count(compare::CheckLine::Verdict::pass) << " passed, " << failed << " failed\n";
+  return failed ? 1 : 0;
+}
+
 int check_scenes(const std::vector<core::Scene>& scenes, const fs::path& baseline_dir, bool update, int repeats,
-                 bool quiet) {
+                 std::optional<double> max_time_ratio, bool quiet) {
   std::error_code ec;
+  if (max_time_ratio && update) throw input_error("--max-time-ratio: checks against a baseline; not with --update");
+  if (max_time_ratio && repeats < 2)
+    throw input_error("--max-time-ratio: a time's interval needs --repeat 2 or more (5 or more for a useful one)");
   if (!update && !fs::is_directory(baseline_dir, ec))
     throw input_error(baseline_dir.string() + ": no such baseline folder (create it with --update)");
   std::vector<compare::CheckLine> lines;
-  for (const auto& scene : scenes) {
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    const auto& scene = scenes[k];
     const fs::path file = compare::baseline_path(baseline_dir, scene.name);
     const auto baseline = read_baseline(file);
     if (!baseline && !update)
       throw input_error(file.string() + ": no baseline for scene '" + scene.name + "' (store one with --update)");
-    if (!quiet) std::cerr << "gacompare: check " << scene.name << "\n";
     // Our two backends only: their baselines and their agreement are what check
     // guards. Bullet's trajectories differ from ours by design (another
     // integrator, another contact model: compare/bullet_world.cpp), so neither a
     // Bullet baseline nor "the backends agree" with Bullet in it would mean a
     // regression; `gacompare compare` sets Bullet beside them instead.
-    const auto result = compare::compare_scene(scene, {"traditional", "cga"}, repeats, compare::Selection::exactly);
-    auto scene_lines = compare::check_scene(result, update ? std::nullopt : baseline);
+    const auto result = compare::compare_scene(scene, {"traditional", "cga"}, repeats, compare::Selection::exactly,
+                                               progress_line("check " + scene.name, k, scenes.size(), quiet));
+    auto scene_lines = compare::check_scene(result, update ? std::nullopt : baseline, max_time_ratio);
     lines.insert(lines.end(), scene_lines.begin(), scene_lines.end());
     if (update) {
       compare::write_file_atomically(file, compare::baseline_json(result).dump(1) + "\n");
       lines.push_back({scene.name, "all", "baseline", 0, 0, compare::CheckLine::Verdict::info, "stored " + file.string()});
     }
   }
-  std::cout << compare::check_table(lines);
-  auto count = [&](compare::CheckLine::Verdict v) {
-    return std::count_if(lines.begin(), lines.end(), [&](const auto& l) { return l.verdict == v; });
-  };
-  const auto failed = count(compare::CheckLine::Verdict::fail);
-  std::cout << "\ncheck: " << count(compare::CheckLine::Verdict::pass) << " passed, " << failed << " failed\n";
-  return failed ? 1 : 0;
+  return print_lines(lines, "check");
+}
+
+// `gacompare diff A B` (compare/diff.hpp): the two runs' provenance, the table,
+// the count; exit 1 when a line failed.
+int diff_command(const std::string& a, const std::string& b, std::optional<double> max_time_ratio,
+                 std::optional<double> tolerance) {
+  const auto runs_a = compare::read_runs(a), runs_b = compare::read_runs(b);
+  const auto lines = compare::diff_runs(runs_a, runs_b, {max_time_ratio, tolerance});
+  std::cout << compare::diff_header(runs_a, runs_b) << "\n";
+  return print_lines(lines, "diff");
 }
 
 // "i/N" with 0 <= i < N.
@@ -196,11 +239,14 @@ nlohmann::ordered_json sweep_manifest(const core::Scene& scene, const compare::S
   return {{"scene_file", fs::absolute(scene.file).string()}, {"scene_sha256", scene.sha256},
           {"repeats", spec.repeats}, {"max_duration", spec.max_duration},
           {"error", spec.error ? std::string(compare::measure_name(*spec.error)) : std::string("default")},
-          {"units", ids}};
+          {"build", spec.build}, {"units", ids}};
 }
 
+// The units' cells that are done with this key; `missing` counts the others,
+// `stale` those of them whose cell is there but was written with another key
+// or format (compare/sweep.hpp, cell_key): they are run again.
 std::vector<nlohmann::json> read_units(const fs::path& cells, const std::vector<compare::Unit>& units,
-                                       const std::string& sha, std::size_t& missing) {
+                                       const nlohmann::json& key, std::size_t& missing, std::size_t* stale = nullptr) {
   std::vector<nlohmann::json> out;
   missing = 0;
   for (const auto& u : units) {
@@ -212,8 +258,9 @@ std::vector<nlohmann::json> read_units(const fs::path& cells, const std::vector<
     }
     try {
       auto j = nlohmann::json::parse(in);
-      if (!compare::cell_is_current(j, sha)) {  // another scene, or an older format: run it again
+      if (!compare::cell_is_current(j, key)) {  // other settings, another build or format: run it again
         ++missing;
+        if (stale) ++*stale;
         continue;
       }
       out.push_back(std::move(j));
@@ -232,12 +279,14 @@ int run_sweep(const core::Scene& scene, const compare::SweepSpec& spec, const fs
   fs::create_directories(cells);
   compare::write_file_atomically(out / "sweep.json", sweep_manifest(scene, spec, units).dump(1) + "\n");
   std::optional<core::Run> reference;
+  const nlohmann::json key = compare::cell_key(swept, spec);
   int ran = 0, skipped = 0;
+  std::size_t stale = 0;
   for (std::size_t k = 0; k < units.size(); ++k) {
     if (static_cast<int>(k % static_cast<std::size_t>(shard.second)) != shard.first) continue;
     const fs::path f = cells / (units[k].id + ".json");
     std::size_t missing = 0;
-    if (!read_units(cells, {units[k]}, swept.sha256, missing).empty()) {  // done before: resume
+    if (!read_units(cells, {units[k]}, key, missing, &stale).empty()) {  // done before: resume
       ++skipped;
       continue;
     }
@@ -246,10 +295,11 @@ int run_sweep(const core::Scene& scene, const compare::SweepSpec& spec, const fs
     compare::write_file_atomically(f, compare::run_unit(units[k], swept, *reference, spec).dump(1) + "\n");
     ++ran;
   }
-  std::cerr << "gacompare: sweep " << scene.name << ": ran " << ran << " unit(s), skipped " << skipped
-            << " already done\n";
+  std::cerr << "gacompare: sweep " << scene.name << ": ran " << ran << " unit(s)"
+            << (stale ? " (" + std::to_string(stale) + " done before with other settings, another build or format)" : "")
+            << ", skipped " << skipped << " already done\n";
   std::size_t missing = 0;
-  const auto done = read_units(cells, units, swept.sha256, missing);
+  const auto done = read_units(cells, units, key, missing);
   if (missing == 0) compare::write_sweep_report(out, swept, done, spec);
   else std::cerr << "gacompare: sweep " << scene.name << ": " << missing << " unit(s) of other shards still to run; "
                  << "join the shards with gacompare merge\n";
@@ -269,7 +319,8 @@ int merge_sweeps(const std::vector<std::string>& dirs, const fs::path& out) {
       throw input_error(d + "/sweep.json: cannot parse: " + e.what());
     }
     if (manifest.is_null()) manifest = m;
-    else if (m != manifest) throw input_error(d + ": a different sweep (scene, settings or units) than " + dirs.front());
+    else if (m != manifest)
+      throw input_error(d + ": a different sweep (scene, settings, build or units) than " + dirs.front());
   }
   const core::Scene scene = core::load_scene(manifest.at("scene_file").get<std::string>());
   if (scene.sha256 != manifest.at("scene_sha256"))
@@ -286,9 +337,10 @@ int merge_sweeps(const std::vector<std::string>& dirs, const fs::path& out) {
   spec.repeats = manifest.at("repeats");
   spec.max_duration = manifest.at("max_duration");
   spec.error = compare::measure_from_string(manifest.value("error", "default"));  // the shards' --error
+  spec.build = manifest.value("build", "");  // the shards' build, not this one's
   const core::Scene swept = compare::swept_scene(scene, spec);
   std::size_t missing = 0;
-  const auto done = read_units(out / "cells", units, swept.sha256, missing);
+  const auto done = read_units(out / "cells", units, compare::cell_key(swept, spec), missing);
   if (missing) throw run_error(out.string() + ": " + std::to_string(missing) + " unit(s) missing from the shards given");
   compare::write_sweep_report(out, swept, done, spec);
   std::cout << out.string() << "\n";
@@ -338,22 +390,51 @@ int list_scenes(const fs::path& dir) {
 
 }  // namespace
 
+// Spellings the command line no longer takes, refused with the one it does.
+constexpr std::pair<const char*, const char*> kRenamed[] = {{"--repeats", "--repeat"}};
+
+// Answers before CLI11 parses: a renamed option, or a first word that is not a
+// command ("A subcommand is required" says nothing about "comapre"). Returns the
+// message, or "" when the line may be parsed.
+std::string precheck(int argc, char** argv, const CLI::App& app) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--") break;
+    for (const auto& [old, now] : kRenamed)
+      if (arg == old || arg.rfind(std::string(old) + "=", 0) == 0)
+        return std::string(old) + " is spelt " + now + " in every command now (e.g. " + now + " 5)";
+  }
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (!arg.empty() && arg[0] == '-') continue;  // the global flags: -q, --help, --version
+    std::vector<std::string> names;
+    for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+    if (std::find(names.begin(), names.end(), arg) != names.end()) return "";
+    return compare::not_one_of("command", arg, names);
+  }
+  return "";
+}
+
 int main(int argc, char** argv) {
+  namespace cli = compare::cli;
   CLI::App app{"gacompare: traditional vs geometric-algebra physics, stage by stage"};
-  // Progress goes to stderr when it is a terminal; nothing when it is not, or with --quiet.
+  // Progress goes to stderr, one line per scene and repeat, terminal or not; --quiet silences it.
   app.set_version_flag("--version", "gacompare " + compare::tool_version());
   app.require_subcommand(1);
   app.fallthrough();  // global flags (--quiet) may follow the subcommand
+  app.option_defaults()->always_capture_default();  // every default shown in --help
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+  const auto backend_check = cli::one_of("backend", compare::backend_names());
+  const auto repeat_check = cli::whole_number(1);
 
-  std::string run_scene, run_backend = "traditional", run_out;
+  std::string run_scene, run_backend, run_out;
   int run_repeat = 1;
   auto* run = app.add_subcommand("run", "run one scene through one backend");
   run->add_option("scene", run_scene, "scene file (JSON)")->required();
-  run->add_option("--backend", run_backend, "traditional, cga or bullet")->check(CLI::IsMember(compare::backend_names()));
-  run->add_option("--out", run_out, "report folder (default reports/<scene>-<date>)");
-  run->add_option("--repeat", run_repeat, "repeats, for the timing spread")->check(CLI::PositiveNumber);
+  run->add_option("--backend", run_backend, "traditional, cga or bullet")->required()->check(backend_check);
+  run->add_option("--out", run_out, "report folder (default reports/<scene>-<date>)")->default_str("");
+  run->add_option("--repeat", run_repeat, "repeats, for the timing spread")->check(repeat_check);
 
   std::vector<std::string> cmp_scenes, cmp_backends = compare::backend_names();
   std::string cmp_out;
@@ -361,28 +442,39 @@ int main(int argc, char** argv) {
   double cmp_accuracy = 0;
   auto* cmp = app.add_subcommand("compare", "run scenes through every backend and compare");
   cmp->add_option("scenes", cmp_scenes, "scene files (JSON)")->required();
-  cmp->add_option("--out", cmp_out, "report folder (default reports/<scene or compare>-<date>)");
-  cmp->add_option("--repeat", cmp_repeat, "repeats per backend, interleaved")->check(CLI::PositiveNumber);
+  cmp->add_option("--out", cmp_out, "report folder (default reports/<scene or compare>-<date>)")->default_str("");
+  cmp->add_option("--repeat", cmp_repeat, "repeats per backend, interleaved")->check(repeat_check);
   // Without --backends: all of them, bullet only on the scenes it suits
   // (compare::Selection::where_supported); with it, exactly the ones named.
+  // One value per occurrence (comma-separated), so an option before the scenes
+  // cannot swallow them.
   auto* cmp_backends_opt = cmp->add_option("--backends", cmp_backends,
-                                           "backends to run, exactly these (default: traditional, cga, and bullet on "
-                                           "scenes with collisions that Bullet can simulate)")
-                               ->check(CLI::IsMember(compare::backend_names()));
+                                           "backends to run, exactly these, comma-separated (default: traditional, "
+                                           "cga, and bullet on scenes with collisions that Bullet can simulate)")
+                               ->delimiter(',')
+                               ->allow_extra_args(false)
+                               ->check(backend_check);
   cmp->add_option("--accuracy", cmp_accuracy,
                   "time at equal accuracy: each backend at the tolerance (or step) where its final error against a "
                   "1e-14 reference is <= E (rad for bodies without particles, m otherwise); cached in DIR/accuracy.json")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::positive_number())
+      ->default_str("off");
 
   std::vector<std::string> chk_scenes;
   std::string chk_baseline;
   bool chk_update = false;
   int chk_repeat = 1;
+  double chk_max_time_ratio = 0;
   auto* chk = app.add_subcommand("check", "regression checks: backends against each other and against stored baselines");
   chk->add_option("scenes", chk_scenes, "scene files (JSON)")->required();
   chk->add_option("--baseline", chk_baseline, "folder of baselines, one SCENE.json per scene")->required();
   chk->add_flag("--update", chk_update, "store fresh baselines instead of comparing with them");
-  chk->add_option("--repeat", chk_repeat, "repeats per backend, for the timing ratio")->check(CLI::PositiveNumber);
+  chk->add_option("--repeat", chk_repeat, "repeats per backend, for the timing ratio")->check(repeat_check);
+  chk->add_option("--max-time-ratio", chk_max_time_ratio,
+                  "fail when the 95% interval of time / baseline time lies above R (needs --repeat 2 or more and a "
+                  "baseline stored with repeats)")
+      ->check(cli::positive_number())
+      ->default_str("off: time is reported, not checked");
 
   std::string sw_scene, sw_out, sw_shard = "0/1", sw_tol = "1e-3:1e-12", sw_steps = "1e-2:4";
   std::vector<std::string> sw_solvers{"euler", "rk4", "rk4_doubling", "cash_karp45", "symplectic_euler", "velocity_verlet"};
@@ -393,23 +485,41 @@ int main(int argc, char** argv) {
   auto* sw = app.add_subcommand("sweep", "what accuracy costs in time: every solver x tolerance or step x backend");
   sw->add_option("scene", sw_scene, "scene file (JSON)")->required();
   sw->add_option("--out", sw_out, "sweep folder (cells/, sweep.md, sweep.csv, the diagram)")->required();
-  sw->add_option("--solvers", sw_solvers, "solvers to sweep")->delimiter(',');
-  sw->add_option("--tolerances", sw_tol, "adaptive solvers: HI:LO, powers of ten (default 1e-3:1e-12)");
-  sw->add_option("--steps", sw_steps, "fixed-step solvers: DT:HALVINGS (default 1e-2:4)");
-  sw->add_option("--repeats", sw_repeat, "timed runs per cell after one warm-up")->check(CLI::PositiveNumber);
-  sw->add_option("--max-duration", sw_max_duration, "cut the scene to this many seconds")->check(CLI::PositiveNumber);
+  sw->add_option("--solvers", sw_solvers, "solvers to sweep, comma-separated")->delimiter(',')->allow_extra_args(false);
+  sw->add_option("--tolerances", sw_tol, "adaptive solvers: HI:LO, powers of ten");
+  sw->add_option("--steps", sw_steps, "fixed-step solvers: DT:HALVINGS");
+  sw->add_option("--repeat", sw_repeat, "timed runs per cell after one warm-up")->check(repeat_check);
+  sw->add_option("--max-duration", sw_max_duration, "cut the scene to this many seconds")
+      ->check(cli::positive_number())
+      ->default_str("the scene's duration");
   sw->add_option("--shard", sw_shard, "run every N-th unit, starting at i: i/N (join with merge)");
   sw->add_flag("--no-peer", sw_no_peer, "leave out Boost.Odeint's Cash-Karp");
   sw->add_option("--error", sw_error,
-                 "the diagram's x-axis, the error at the end: position|orientation|velocity|angular_velocity "
-                 "(default: orientation for a scene of bodies, position with particles)")
-      ->check(CLI::IsMember({"position", "orientation", "velocity", "angular_velocity"}));
+                 "the diagram's x-axis, the error at the end: position|orientation|velocity|angular_velocity")
+      ->check(cli::one_of("measure", {"position", "orientation", "velocity", "angular_velocity"}))
+      ->default_str("orientation for a scene of bodies, position with particles");
 
   std::vector<std::string> mg_dirs;
   std::string mg_out;
   auto* mg = app.add_subcommand("merge", "join the folders of a sharded sweep and write its report");
   mg->add_option("dirs", mg_dirs, "the shards' sweep folders")->required();
   mg->add_option("--out", mg_out, "the merged sweep folder")->required();
+
+  std::string diff_a, diff_b;
+  std::optional<double> diff_max_time_ratio, diff_tolerance;
+  auto* dif = app.add_subcommand("diff", "two runs (or two commits) compared: time ratios with 95% intervals, "
+                                         "state differences");
+  dif->add_option("A", diff_a, "the first run: a report folder or its results.json")->required();
+  dif->add_option("B", diff_b, "the second run, compared with the first (ratios are B / A)")->required();
+  dif->add_option("--max-time-ratio", diff_max_time_ratio,
+                  "fail when a 95% interval of B / A time lies above R")
+      ->check(cli::positive_number())
+      ->default_str("off: time is reported, not checked");
+  dif->add_option("--tolerance", diff_tolerance,
+                  "fail when B's state moves from A's by more than D m at any sample (orientation by D / r, ...: the "
+                  "bounds of check)")
+      ->check(cli::positive_number())
+      ->default_str("each scene's check.baseline_tolerance");
 
   std::string list_dir = std::string(GACOMPARE_DATA_DIR) + "/scenes";
   auto* list = app.add_subcommand("list", "list the bundled scenes");
@@ -420,22 +530,26 @@ int main(int argc, char** argv) {
   std::string col_out, col_table, col_disagree;
   auto* col = app.add_subcommand("collide", "narrowphase of convex pairs: both backends, the exact SAT, FCL and Bullet");
   col->add_option("cases", col_files, "case files (JSON array of {\"a\": body, \"b\": body})")->required();
-  col->add_option("--repeat", col_options.repeat, "timed queries per method and pair, interleaved")->check(CLI::PositiveNumber);
-  col->add_option("--out", col_out, "write the JSON array here instead of stdout");
-  col->add_option("--table", col_table, "write the agreement table (markdown) here instead of stderr");
-  col->add_option("--disagreements", col_disagree, "folder for replayable case files of every disagreement");
+  col->add_option("--repeat", col_options.repeat, "timed queries per method and pair, interleaved")->check(repeat_check);
+  col->add_option("--out", col_out, "write the JSON array here instead of stdout")->default_str("stdout");
+  col->add_option("--table", col_table, "write the agreement table (markdown) here instead of stderr")->default_str("stderr");
+  col->add_option("--disagreements", col_disagree, "folder for replayable case files of every disagreement")
+      ->default_str("none written");
 
   std::uint64_t corpus_seed = 2026;
   int corpus_count = 200;
   std::string corpus_out;
   auto* corpus = app.add_subcommand("corpus", "write the seeded random collision corpus (data/collision/random.json)");
   corpus->add_option("--seed", corpus_seed, "random seed");
-  corpus->add_option("--count", corpus_count, "pairs")->check(CLI::PositiveNumber);
+  corpus->add_option("--count", corpus_count, "pairs")->check(cli::whole_number(1, 1'000'000));
   corpus->add_option("--out", corpus_out, "case file to write")->required();
 
+  if (const std::string why = precheck(argc, argv, app); !why.empty()) {
+    std::cerr << "gacompare: " << why << " (see gacompare --help)\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
-    if (!::isatty(STDERR_FILENO)) quiet = true;
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
@@ -453,7 +567,12 @@ int main(int argc, char** argv) {
                             cmp_backends_opt->count() > 0 ? compare::Selection::exactly
                                                           : compare::Selection::where_supported,
                             cmp_repeat, cmp_out, quiet);
-    if (*chk) return check_scenes(load_all(chk_scenes), chk_baseline, chk_update, chk_repeat, quiet);
+    if (*chk) {
+      std::optional<double> max_time_ratio;
+      if (chk_max_time_ratio > 0) max_time_ratio = chk_max_time_ratio;
+      return check_scenes(load_all(chk_scenes), chk_baseline, chk_update, chk_repeat, max_time_ratio, quiet);
+    }
+    if (*dif) return diff_command(diff_a, diff_b, diff_max_time_ratio, diff_tolerance);
     if (*sw) {
       compare::SweepSpec spec;
       for (const auto& n : sw_solvers) {
@@ -464,6 +583,7 @@ int main(int argc, char** argv) {
       std::tie(spec.tol_from, spec.tol_to) = parse_tolerances(sw_tol);
       std::tie(spec.dt_from, spec.dt_halvings) = parse_steps(sw_steps);
       spec.repeats = sw_repeat;
+      spec.build = compare::build_info().commit;
       spec.max_duration = sw_max_duration;
       spec.peer = !sw_no_peer;
       if (!sw_error.empty()) spec.error = compare::measure_from_string(sw_error);

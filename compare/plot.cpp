@@ -37,7 +37,9 @@ std::string render_svg(const Plot& plot) {
   const fs::path dir = fs::temp_directory_path() / ("gacompare_plot_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::ostringstream script;
-  script << "set terminal svg size 900,600 dynamic enhanced font 'sans,12' background rgb 'white'\n"
+  // 1000 × 560 at 12 pt: drawn at the page's full width (report.html) the text
+  // stays the size of the page's, and pasted into a paper's column it scales.
+  script << "set terminal svg size 1000,560 dynamic enhanced font 'sans,12' background rgb 'white'\n"
          << "set output " << quoted((dir / "plot.svg").string()) << "\n"
          << "set title " << quoted(plot.title) << " noenhanced\n"
          << "set xlabel " << quoted(plot.xlabel) << "\nset ylabel " << quoted(plot.ylabel) << "\n"
@@ -57,20 +59,30 @@ std::string render_svg(const Plot& plot) {
   for (std::size_t i = 0; i < plot.series.size(); ++i) {
     const Series& s = plot.series[i];
     const fs::path data = dir / ("series" + std::to_string(i) + ".dat");
+    const bool errors = s.lo.size() == s.x.size() && s.hi.size() == s.x.size() && !s.x.empty();
     std::ofstream out(data);
-    for (std::size_t k = 0; k < s.x.size(); ++k) out << s.x[k] << ' ' << s.y[k] << '\n';
-    if (bars) {  // boxes side by side around each category
+    out.precision(17);
+    for (std::size_t k = 0; k < s.x.size(); ++k) {
+      out << s.x[k] << ' ' << s.y[k];
+      if (errors) out << ' ' << s.lo[k] << ' ' << s.hi[k];
+      out << '\n';
+    }
+    if (bars) {  // boxes side by side around each category, error bars over them
       const double width = 0.8 / static_cast<double>(plot.series.size());
       const double shift = (static_cast<double>(i) - 0.5 * static_cast<double>(plot.series.size() - 1)) * width;
       script << (i ? ", " : "") << quoted(data.string()) << " using ($1+" << shift << "):2 with boxes title "
              << quoted(s.title) << " noenhanced";
+      if (errors)
+        script << ", " << quoted(data.string()) << " using ($1+" << shift
+               << "):2:3:4 with yerrorbars lc rgb 'black' pt 0 ps 0 lw 1 notitle";
       continue;
     }
     // Markers only where points are few enough to read; a time series is a line.
     const bool markers = s.x.size() <= 60;
     script << (i ? ", " : "") << quoted(data.string()) << " using 1:2 with " << (markers ? "linespoints" : "lines")
            << " title " << quoted(s.title) << " noenhanced"
-           << (s.highlight ? " lw 3 pt 7 ps 1.2" : markers ? " lw 1 pt " + std::to_string(1 + i % 12) : " lw 2");
+           << (s.highlight ? " lw 3 pt 7 ps 1.2" : markers ? " lw 1 pt " + std::to_string(1 + i % 12) : " lw 2")
+           << (s.dashed ? " dt 2" : "");
   }
   script << "\n";
   { std::ofstream(dir / "plot.gp") << script.str(); }

@@ -12,6 +12,10 @@ struct Series {
   std::string title;
   std::vector<double> x, y;
   bool highlight = false;  // drawn bold (e.g. the Pareto front)
+  // Error bars from lo[i] to hi[i] (e.g. min–max over repeats), drawn on bars;
+  // empty: none.
+  std::vector<double> lo{}, hi{};  // (default initialisers: Series{title, x, y, highlight} stays warning-free)
+  bool dashed = false;     // drawn dashed, over a line it coincides with
 };
 
 struct Plot {

@@ -1,6 +1,7 @@
 #include "compare/report.hpp"
 
 #include "compare/check.hpp"
+#include "compare/replay.hpp"
 #include "compare/results.hpp"
 #include "compare/sanity.hpp"
 #include "compare/stats.hpp"
@@ -59,8 +60,10 @@ const BackendResult* find(const SceneResult& r, std::string_view name) {
 
 std::string header(const MachineInfo& m, int repeats) {
   std::ostringstream o;
-  o << "gacompare " << tool_version() << " (" << m.build_type << ", " << m.compiler << ") on " << m.cpu << ", "
-    << m.date << ". Times are medians over " << repeats
+  o << "gacompare " << tool_version() << " (" << m.build_type << ", " << m.compiler << ", commit "
+    << m.build.commit.substr(0, 12) << (m.build.dirty == "yes" ? " with uncommitted changes" : m.build.dirty == "no" ? "" : ", tree state unknown")
+    << ") on " << m.cpu << " (" << m.usable_cpus << " CPUs usable, load average " << fmt("%.2f", m.load_average[0])
+    << " at the start), " << m.date << ". Times are medians over " << repeats
     << " repeats, backends interleaved, with min–max in brackets; ratios are cga/traditional over paired repeats.\n";
   return o.str();
 }
@@ -90,7 +93,16 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
   const std::vector<CheckLine> sanity = sanity_checks(r);
   for (const auto& w : sanity_warnings(sanity)) o << "**WARNING, physical sanity:** " << w << "\n\n";
 
-  o << "## Stage times\n\n| stage |";
+  bool gaps = false, bullet = false;  // a stage one backend ran and another did not
+  for (const auto& b : r.backends) bullet = bullet || b.run.backend == "bullet";
+  for (int k = 0; k < core::kStageCount; ++k)
+    for (const auto& b : r.backends)
+      gaps = gaps || (b.run.profile.ran(static_cast<Stage>(k)) != r.backends.front().run.profile.ran(static_cast<Stage>(k)));
+  o << "## Stage times\n\n";
+  if (gaps)
+    o << "A dash: the backend has no such stage"
+      << (bullet ? " (Bullet finds and answers contacts inside its own step, all timed as `integrate`)" : "") << ".\n\n";
+  o << "| stage |";
   for (const auto& b : r.backends) o << " " << b.run.backend << " | calls | share |";
   const BackendResult* trad = find(r, "traditional");
   const BackendResult* cga = find(r, "cga");
@@ -107,13 +119,22 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
     if (!any) continue;
     o << "| `" << core::stage_name(s) << "` |";
     for (const auto& b : r.backends) {
+      if (!b.run.profile.ran(s)) {  // Bullet has no time of impact: not "0 (0–0) 0%"
+        o << " – | – | – |";
+        continue;
+      }
       const double share = b.run.profile.total_seconds() > 0
                                ? spread(stage_seconds(b, s)).median / spread(total_seconds(b)).median
                                : 0;
       o << " " << time_cell(stage_seconds(b, s)) << " | " << b.run.profile[s].calls << " | "
         << fmt("%.0f%%", 100 * share) << " |";
     }
-    if (ratio) o << " " << ratio_cell(paired_ratio(stage_seconds(*cga, s), stage_seconds(*trad, s))) << " |";
+    if (ratio)
+      o << " "
+        << (cga->run.profile.ran(s) && trad->run.profile.ran(s)
+                ? ratio_cell(paired_ratio(stage_seconds(*cga, s), stage_seconds(*trad, s)))
+                : std::string("–"))
+        << " |";
     o << "\n";
   }
   o << "| **all stages** |";
@@ -407,6 +428,8 @@ void write_reports(const std::filesystem::path& dir, const std::vector<SceneResu
     write_file_atomically(d / "stages.csv", stage_csv({r}));
     write_file_atomically(d / "report.md", scene_report_md(r, machine, repeats));
     write_file_atomically(d / "report.html", scene_report_html(r, machine, repeats));
+    write_file_atomically(d / "trajectories.csv", trajectories_csv(r));
+    write_file_atomically(d / "replay.html", replay_html(r));
   };
   if (results.size() == 1) {
     write_scene(dir, results.front());

@@ -30,9 +30,11 @@ std::string summary_report_html(const std::vector<SceneResult>& results, const M
 // The pieces: markdown (headings, paragraphs, pipe tables) as HTML, and a
 // self-contained page around a body.
 std::string markdown_to_html(const std::string& md);
+std::string html_escape(const std::string& text);  // <, >, & and " as entities
 std::string html_page(const std::string& title, const std::string& body);
 
-// Writes results.json, report.md, report.html and stages.csv for one scene into `dir`, or, for
+// Writes results.json, report.md, report.html, stages.csv, trajectories.csv and
+// replay.html (compare/replay.hpp) for one scene into `dir`, or, for
 // several, one such folder per scene under `dir` plus dir/report.md and
 // dir/stages.csv summarising them. Every file is written atomically.
 // `equal_accuracy`: as for summary_report_md (and summary.json).

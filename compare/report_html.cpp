@@ -13,9 +13,7 @@
 
 namespace gacompare::compare {
 
-namespace {
-
-std::string escape(const std::string& s) {
+std::string html_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     if (c == '<') out += "&lt;";
@@ -27,9 +25,11 @@ std::string escape(const std::string& s) {
   return out;
 }
 
+namespace {
+
 // The inline markdown report.md uses: `code`, **bold**, [text](link).
 std::string inline_md(const std::string& text) {
-  const std::string s = escape(text);
+  const std::string s = html_escape(text);
   std::string out;
   for (std::size_t i = 0; i < s.size();) {
     if (s[i] == '`') {
@@ -158,6 +158,26 @@ Plot divergence_over_time(const SceneResult& r, Measure m) {
   return p;
 }
 
+// Lines equal at every point hide each other: each series equal to an earlier
+// one is drawn dashed over it, titled "cga (= traditional)", and the figure
+// says so under it. Returns that note, or "" when no two lines coincide.
+std::string mark_coinciding(Plot& p) {
+  if (!p.categories.empty()) return "";  // bars stand side by side: none hides another
+  std::string note;
+  for (std::size_t j = 1; j < p.series.size(); ++j)
+    for (std::size_t i = 0; i < j; ++i) {
+      Series &a = p.series[i], &b = p.series[j];
+      if (a.x != b.x || a.y != b.y || a.x.empty()) continue;
+      const std::string first = a.title.substr(0, a.title.find(" (="));
+      note += (note.empty() ? "" : " ") + b.title + " coincides with " + first +
+              " at every point (drawn dashed over it).";
+      b.title += " (= " + first + ")";
+      b.dashed = true;
+      break;
+    }
+  return note;
+}
+
 std::string figures(const SceneResult& r) {
   std::ostringstream o;
   bool constrained = false, bodies = false;
@@ -194,19 +214,29 @@ std::string figures(const SceneResult& r) {
   for (const auto& b : r.backends) {
     Series s{b.run.backend, {}, {}, false};
     for (std::size_t i = 0; i < ran.size(); ++i) {
+      if (!b.run.profile.ran(ran[i])) continue;  // no bar, rather than a bar of 0
       std::vector<double> secs;
       for (const auto& p : b.profiles) secs.push_back(p[ran[i]].seconds);
+      const Spread sp = spread(secs);
       s.x.push_back(static_cast<double>(i));
-      s.y.push_back(spread(secs).median);
+      s.y.push_back(sp.median);
+      s.lo.push_back(sp.min);
+      s.hi.push_back(sp.max);
     }
     bars.series.push_back(s);
   }
-  if (!ran.empty()) plots.insert(plots.begin(), bars);
+  if (!ran.empty()) {
+    bars.ylabel = "seconds: median over repeats, bars from min to max";
+    plots.insert(plots.begin(), bars);
+  }
   o << "<h2>Figures</h2>\n";
-  for (const auto& p : plots) {
+  for (auto& p : plots) {
+    const std::string note = mark_coinciding(p);
     std::string svg = render_svg(p);
     const auto start = svg.find("<svg");  // drop the XML prologue: the SVG is inline
-    o << "<figure>" << (start == std::string::npos ? svg : svg.substr(start)) << "</figure>\n";
+    o << "<figure>" << (start == std::string::npos ? svg : svg.substr(start));
+    if (!note.empty()) o << "<figcaption>" << html_escape(note) << "</figcaption>";
+    o << "</figure>\n";
   }
   return o.str();
 }
@@ -214,11 +244,11 @@ std::string figures(const SceneResult& r) {
 }  // namespace
 
 std::string html_page(const std::string& title, const std::string& body) {
-  return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + escape(title) +
+  return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + html_escape(title) +
          "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}"
          "table{border-collapse:collapse;margin:1em 0}th,td{border:1px solid #ccc;padding:.3em .6em}"
          "td{text-align:right}td:first-child{text-align:left}th{background:#f3f3f3}"
-         "figure{margin:1em 0}svg{max-width:100%;height:auto}code{background:#f3f3f3;padding:0 .2em}</style>"
+         "figure{margin:1em 0}figure svg{width:100%;height:auto;display:block}figcaption{font-size:.9em;color:#555}code{background:#f3f3f3;padding:0 .2em}</style>"
          "</head><body>\n" +
          body + "</body></html>\n";
 }

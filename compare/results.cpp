@@ -1,6 +1,8 @@
 #include "compare/results.hpp"
 
 #include "compare/stats.hpp"
+#include "core/mass_properties.hpp"
+#include "core/mesh.hpp"
 
 #include <cmath>
 
@@ -31,6 +33,53 @@ json sample_json(const core::Scene& scene, const core::Sample& s) {
           {"angular_momentum", vec(s.angular_momentum)},
           {"constraint_violation", s.constraint_violation},
           {"rotation_drift", s.rotation_drift}};
+}
+
+// What the replay draws and `diff` bounds, beside the samples: each body's
+// mesh in body coordinates (about its centre of mass, as its samples' position
+// and orientation place it: world = R(q) v + x), its radius and whether it is
+// static; the particles in sample order; the constraints with their geometry.
+json bodies_json(const core::Scene& scene) {
+  json bodies = json::array();
+  const std::vector<double> radii = body_radii(scene);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const core::Body& b = scene.bodies[i];
+    const core::Mesh mesh = core::mesh_for(b.shape);
+    const core::Vec3 com = core::mass_properties(mesh, 1.0).centre_of_mass;
+    json vertices = json::array(), triangles = json::array();
+    for (const core::Vec3& v : mesh.vertices()) vertices.push_back(vec(core::Vec3(v - com)));
+    for (const auto& t : mesh.triangles()) triangles.push_back({t[0], t[1], t[2]});
+    bodies.push_back({{"name", b.name}, {"static", b.is_static}, {"radius", radii[i]}, {"vertices", vertices},
+                      {"triangles", triangles}});
+  }
+  return bodies;
+}
+
+json constraints_json(const core::Scene& scene) {
+  json out = json::array();
+  for (const auto& c : scene.constraints) {
+    json j = {{"type", std::string(core::constraint_name(c))}};
+    std::visit(
+        [&](const auto& k) {
+          using K = std::decay_t<decltype(k)>;
+          if constexpr (std::is_same_v<K, core::DistanceBetween>) {
+            j["particles"] = {k.a, k.b};
+            j["length"] = k.length;
+          } else {
+            j["particles"] = {k.particle};
+            if constexpr (std::is_same_v<K, core::DistanceToPoint>) j["point"] = vec(k.point), j["length"] = k.length;
+            if constexpr (std::is_same_v<K, core::OnPlane>) j["point"] = vec(k.point), j["normal"] = vec(k.normal);
+            if constexpr (std::is_same_v<K, core::OnLine>) j["point"] = vec(k.point), j["direction"] = vec(k.direction);
+            if constexpr (std::is_same_v<K, core::OnCircle>)
+              j["center"] = vec(k.center), j["normal"] = vec(k.normal), j["radius"] = k.radius;
+            if constexpr (std::is_same_v<K, core::OnHelix>)
+              j["center"] = vec(k.center), j["axis"] = vec(k.axis), j["radius"] = k.radius, j["pitch"] = k.pitch;
+          }
+        },
+        c);
+    out.push_back(j);
+  }
+  return out;
 }
 
 json spread_json(const Spread& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }
@@ -71,18 +120,40 @@ json run_json(const core::Scene& scene, const BackendResult& b) {
 }
 }  // namespace
 
+nlohmann::ordered_json scene_json(const core::Scene& scene) {
+  json particles = json::array();
+  for (const auto& p : scene.particles) particles.push_back(p.name);
+  return {{"name", scene.name},
+          {"description", scene.description},
+          {"file", scene.file.string()},
+          {"sha256", scene.sha256},
+          {"duration", scene.duration},
+          {"output_every", scene.output_every},
+          {"check", {{"max_divergence", scene.check.max_divergence}, {"baseline_tolerance", scene.check.baseline_tolerance}}},
+          {"particles", particles},
+          {"bodies", bodies_json(scene)},
+          {"constraints", constraints_json(scene)}};
+}
+
+nlohmann::ordered_json machine_json(const MachineInfo& m) {
+  const auto dirty = m.build.dirty == "yes" ? json(true) : m.build.dirty == "no" ? json(false) : json(nullptr);
+  return {{"cpu", m.cpu},
+          {"logical_cpus", m.logical_cpus},
+          {"usable_cpus", m.usable_cpus},
+          {"load_average", {{"start", m.load_average}, {"end", m.load_average_end}}},
+          {"compiler", m.compiler},
+          {"build_type", m.build_type},
+          {"flags", m.flags},
+          {"git", {{"commit", m.build.commit}, {"dirty", dirty}}},
+          {"date", m.date}};
+}
+
 nlohmann::ordered_json results_json(const SceneResult& r, const MachineInfo& machine, int repeats) {
   json runs = json::array();
   for (const auto& b : r.backends) runs.push_back(run_json(r.scene, b));
   return {{"tool", {{"name", "gacompare"}, {"version", tool_version()}}},
-          {"scene",
-           {{"name", r.scene.name},
-            {"description", r.scene.description},
-            {"file", r.scene.file.string()},
-            {"sha256", r.scene.sha256}}},
-          {"machine",
-           {{"cpu", machine.cpu}, {"compiler", machine.compiler}, {"date", machine.date},
-            {"build_type", machine.build_type}}},
+          {"scene", scene_json(r.scene)},
+          {"machine", machine_json(machine)},
           {"repeats", repeats},
           {"runs", runs},
           {"divergence",

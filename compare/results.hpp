@@ -9,6 +9,18 @@
 namespace gacompare::compare {
 
 // The issue #2 schema: {"tool", "scene", "machine", "repeats", "runs": [...]}.
+// "scene" also carries what the replay draws and `diff` needs (README,
+// "results.json"): duration, output_every, check tolerances, the particles'
+// names, each body's mesh about its centre of mass, radius and static flag,
+// and the constraints.
 nlohmann::ordered_json results_json(const SceneResult& r, const MachineInfo& machine, int repeats);
+
+// results.json's "scene" record (a scene with its generators expanded).
+nlohmann::ordered_json scene_json(const core::Scene& scene);
+
+// The "machine" record of results.json and summary.json: CPU, CPUs, load
+// averages at the start and end, compiler, build type and flags, the git
+// commit and dirty flag of the build (null when unknown), and the date.
+nlohmann::ordered_json machine_json(const MachineInfo& machine);
 
 }  // namespace gacompare::compare

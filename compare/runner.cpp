@@ -59,7 +59,7 @@ std::vector<std::string> backends_for(const core::Scene& scene, const std::vecto
 }
 
 SceneResult compare_scene(const core::Scene& written, const std::vector<std::string>& requested, int repeats,
-                          Selection selection) {
+                          Selection selection, const Progress& progress) {
   const core::Scene scene = core::expand_generators(written);
   const std::vector<std::string> backends = backends_for(scene, requested, selection);
   SceneResult result{scene, std::vector<BackendResult>(backends.size())};
@@ -77,6 +77,7 @@ SceneResult compare_scene(const core::Scene& written, const std::vector<std::str
         br.deterministic = false;
       }
     }
+    if (progress) progress(r + 1, repeats, result);
   }
   return result;
 }

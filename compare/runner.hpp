@@ -4,6 +4,7 @@
 #include "core/run.hpp"
 #include "core/scene.hpp"
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,10 +50,15 @@ struct SceneResult {
   std::vector<BackendResult> backends;  // in the order of backends_for(scene, requested, selection)
 };
 
+// Called after each round of repeats (every backend once), with the round
+// (1-based), the number of rounds and the result so far (each backend's
+// wall_seconds holds one time per round done): the command line's progress.
+using Progress = std::function<void(int round, int rounds, const SceneResult& so_far)>;
+
 // Runs every backend of backends_for(scene, requested, selection) `repeats`
 // times, alternating which goes first in each round (ABBA…) so none always runs
 // on a warm or a cold machine.
 SceneResult compare_scene(const core::Scene& scene, const std::vector<std::string>& requested, int repeats,
-                          Selection selection = Selection::where_supported);
+                          Selection selection = Selection::where_supported, const Progress& progress = {});
 
 }  // namespace gacompare::compare

@@ -1,5 +1,7 @@
 #include "compare/summary.hpp"
 
+#include "compare/results.hpp"
+
 #include "compare/metrics.hpp"
 
 #include <algorithm>
@@ -265,9 +267,7 @@ nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, con
                                 {"stages", stages}};
   }
   return {{"tool", {{"name", "gacompare"}, {"version", tool_version()}}},
-          {"machine",
-           {{"cpu", machine.cpu}, {"compiler", machine.compiler}, {"date", machine.date},
-            {"build_type", machine.build_type}}},
+          {"machine", machine_json(machine)},
           {"repeats", repeats},
           {"equal_accuracy", equal_accuracy > 0 ? json(equal_accuracy) : json(nullptr)},
           {"method",

@@ -288,7 +288,7 @@ json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& ref, 
   const StateErrors n = error_of_nothing(ref);
   for (const Measure m : measures_of(swept)) nothing[std::string(measure_name(m))] = n[m];
   return {{"format", kSweepCellFormat}, {"unit", unit.id}, {"solver", unit.solver}, {"setting", unit.setting},
-          {"scene_sha256", swept.sha256}, {"error_of_nothing", nothing}, {"cells", cells}};
+          {"key", cell_key(swept, spec)}, {"error_of_nothing", nothing}, {"cells", cells}};
 }
 
 std::string format_number(const char* printf_format, double x) {
@@ -321,8 +321,15 @@ std::optional<EqualAccuracyPoint> cost_at_error(std::vector<EqualAccuracyPoint> 
   return front.front();  // a front of one cell, asked at exactly its error
 }
 
-bool cell_is_current(const nlohmann::json& record, const std::string& scene_sha256) {
-  return record.value("format", 1) == kSweepCellFormat && record.value("scene_sha256", "") == scene_sha256;
+nlohmann::ordered_json cell_key(const core::Scene& swept, const SweepSpec& spec) {
+  return {{"scene_sha256", swept.sha256}, {"duration", swept.duration}, {"output_every", swept.output_every},
+          {"repeats", spec.repeats}, {"build", spec.build}};
+}
+
+bool cell_is_current(const nlohmann::json& record, const nlohmann::json& key) {
+  // Compared as unordered JSON: a record read back from a file keeps no order.
+  return record.value("format", 1) == kSweepCellFormat && record.contains("key") &&
+         nlohmann::json(record.at("key")) == nlohmann::json(key);
 }
 
 void write_sweep_report(const std::filesystem::path& dir, const core::Scene& scene,

@@ -46,6 +46,7 @@ struct SweepSpec {
   double max_duration = 0;        // > 0: cut the scene to this duration
   bool peer = true;               // Boost.Odeint's Cash–Karp, where the scene has no projection
   std::optional<Measure> error;   // the diagram's x-axis; nullopt: default_error(scene)
+  std::string build;              // the commit of the build that runs the cells (cell_key)
 };
 
 // One number through a printf format ("%.3g"), as the reports write them.
@@ -56,9 +57,15 @@ Measure default_error(const core::Scene& scene);
 
 // A unit's record is reused by a resumed sweep or a merge only when it was
 // written by this format (1 measured position alone; 2 had no traditional
-// cell with the other rotation representation) for this scene.
-inline constexpr int kSweepCellFormat = 3;
-bool cell_is_current(const nlohmann::json& record, const std::string& scene_sha256);
+// cell with the other rotation representation; 3 had no key) with this key.
+inline constexpr int kSweepCellFormat = 4;
+// Everything beside the unit's own solver and setting that changes what its
+// cell holds: the scene (sha256), the duration and sample interval it was cut
+// to (--max-duration), the repeats its time is the median of (--repeat), and
+// the build that ran it (spec.build, a commit: another build times other
+// code). A cell with another key is run again, never mixed in.
+nlohmann::ordered_json cell_key(const core::Scene& swept, const SweepSpec& spec);
+bool cell_is_current(const nlohmann::json& record, const nlohmann::json& key);
 
 struct Unit {
   std::string id;       // file name stem: solver-setting
@@ -80,7 +87,7 @@ core::Run sweep_reference(const core::Scene& swept);
 // backend with its other rotation representation, labelled
 // "traditional-quaternion" or "traditional-matrix" — or the peer) against the
 // reference and returns
-// its record: {"format", "unit", "solver", "setting", "scene_sha256", "error_of_nothing": {measure: value},
+// its record: {"format", "unit", "solver", "setting", "key" (cell_key), "error_of_nothing": {measure: value},
 // "cells": [{"backend", "errors": {measure: {"final", "rms"}}, "seconds", "steps", ...}]}
 // (an error is null where the run failed; a measure the scene has no object for is absent).
 nlohmann::ordered_json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& reference,

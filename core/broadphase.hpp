@@ -29,6 +29,8 @@
 // scale, core/collision.hpp) guarantees the sweep never drops a pair that
 // Ops::overlap would accept. It only adds candidates within the band.
 #include "core/bounding_volume.hpp"
+#include "core/scene.hpp"
+#include "core/tree_broadphase.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -42,12 +44,17 @@ namespace gacompare::core {
 inline constexpr double kSweepPad = 1e-9;
 
 struct BroadphaseCounters {
-  std::int64_t candidates = 0;     // pairs left by the sweep
-  std::int64_t overlap_tests = 0;  // Ops::overlap calls (= candidates: each candidate is tested once)
+  std::int64_t candidates = 0;     // volume tests: pairs left by the sweep; tree nodes tested and kept pairs
+  std::int64_t overlap_tests = 0;  // Ops::overlap calls on two bodies' spheres (the sweep: = candidates)
   std::int64_t pairs = 0;          // overlapping pairs found
+  std::int64_t tree_updates = 0;   // leaves inserted (a body left its fat volume, or a build)
+  std::int64_t pairs_kept = 0;     // persistent pairs after the update (fat volumes overlap)
 };
 struct BroadphaseResult {
   std::vector<std::pair<int, int>> pairs;  // i < j, sorted
+  // With margins (Broadphase::find): the pairs whose grown spheres overlap,
+  // i < j, sorted, a superset of `pairs`.
+  std::vector<std::pair<int, int>> candidates;
   BroadphaseCounters counters;
   int axis = 0;  // 0, 1, 2: x, y, z
 };
@@ -104,5 +111,102 @@ BroadphaseResult sort_and_sweep(std::span<const typename Ops::Sphere> spheres) {
   out.counters.pairs = static_cast<std::int64_t>(out.pairs.size());
   return out;
 }
+
+// The collision pipeline's broadphase (issue #14): one call per detection,
+// whichever method the scene names (`broadphase`: "sweep", "aabb_tree",
+// "sphere_tree"; core/scene.hpp), the same pairs from each: those whose
+// bounding spheres pass Ops::overlap and, given margins (how far each body can
+// move in the step), the candidates whose spheres grown by them do. Two static
+// bodies are never a pair.
+//
+// The frame (issue #16 item 6): a conformal sphere stores ½|c|² beside c, so
+// world coordinates 1e5 m from the origin cost its overlap test 10 digits;
+// every method works on spheres about a frame origin near the bodies. The trees
+// persist between detections, so the frame cannot follow the bodies' mean at
+// every detection as it once did: it is fixed at the first detection (their
+// mean) and moved to the mean again, with a rebuild of the trees, only when the
+// mean has drifted further from it than the bodies' extent about the mean (the
+// largest |c − mean| + ρ). Every coordinate then stays within twice the
+// extent. Overlap does not depend on the frame, so the pairs do not either.
+template <SphereTreeOps Ops>
+class Broadphase {
+ public:
+  using Sphere = typename Ops::Sphere;
+  // margin: the trees' fat margin relative to each radius (the benchmarks vary it).
+  explicit Broadphase(BroadphaseMethod method = Collisions{}.broadphase, double margin = kFatMargin)
+      : method_(method), aabb_(margin), spheres_tree_(margin) {}
+
+  // The bodies' bounding spheres by centre (world coordinates) and radius;
+  // margins empty, or one per body (≥ 0).
+  BroadphaseResult find(std::span<const Vec3> centres, std::span<const double> radii, std::span<const char> is_static,
+                        std::span<const double> margins = {}) {
+    place(centres, radii, margins);
+    BroadphaseResult out;
+    const BroadphaseBodies<Sphere> b{local_, radii, margins, spheres_, margins.empty() ? spheres_ : grown_, is_static};
+    if (method_ == BroadphaseMethod::sweep) {
+      const auto both_static = [&](const std::pair<int, int>& p) {
+        return is_static[static_cast<std::size_t>(p.first)] && is_static[static_cast<std::size_t>(p.second)];
+      };
+      BroadphaseResult swept = sort_and_sweep<Ops>(b.grown);
+      std::erase_if(swept.pairs, both_static);
+      out.counters = swept.counters;
+      if (margins.empty()) {
+        out.pairs = std::move(swept.pairs);
+      } else {
+        out.candidates = std::move(swept.pairs);
+        for (const auto& [i, j] : out.candidates) {
+          ++out.counters.candidates, ++out.counters.overlap_tests;
+          if (Ops::overlap(spheres_[static_cast<std::size_t>(i)], spheres_[static_cast<std::size_t>(j)]))
+            out.pairs.emplace_back(i, j);
+        }
+      }
+    } else {
+      const TreeWork w = method_ == BroadphaseMethod::aabb_tree ? aabb_.update(b, out.pairs, out.candidates)
+                                                                : spheres_tree_.update(b, out.pairs, out.candidates);
+      out.counters.candidates = w.volume_tests + w.exact_tests;
+      out.counters.overlap_tests = w.exact_tests;
+      out.counters.tree_updates = w.reinserted;
+      out.counters.pairs_kept = w.kept;
+    }
+    out.counters.pairs = static_cast<std::int64_t>(out.pairs.size());
+    return out;
+  }
+
+  BroadphaseMethod method() const { return method_; }
+  const Vec3& frame() const { return frame_; }
+  int frames() const { return frames_; }  // how often the frame was set (1 + re-centrings)
+
+ private:
+  BroadphaseMethod method_;
+  Vec3 frame_ = Vec3::Zero();
+  int frames_ = 0;
+  std::vector<Vec3> local_;  // centres in the frame
+  std::vector<Sphere> spheres_, grown_;
+  TreeBroadphase<AabbVolume, Ops> aabb_;
+  TreeBroadphase<SphereVolume<Ops>, Ops> spheres_tree_;
+
+  void place(std::span<const Vec3> centres, std::span<const double> radii, std::span<const double> margins) {
+    const std::size_t n = centres.size();
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& c : centres) mean += c;
+    if (n > 0) mean /= static_cast<double>(n);
+    double extent = 0;
+    for (std::size_t i = 0; i < n; ++i) extent = std::max(extent, (centres[i] - mean).norm() + radii[i]);
+    if (frames_ == 0 || n != local_.size() || (mean - frame_).norm() > extent) {
+      frame_ = mean;
+      ++frames_;
+      aabb_.clear();
+      spheres_tree_.clear();
+    }
+    local_.resize(n);
+    spheres_.clear();
+    grown_.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      local_[i] = centres[i] - frame_;
+      spheres_.push_back(Ops::sphere(local_[i], radii[i]));
+      if (!margins.empty()) grown_.push_back(Ops::sphere(local_[i], radii[i] + margins[i]));
+    }
+  }
+};
 
 }  // namespace gacompare::core

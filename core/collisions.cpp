@@ -10,6 +10,8 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["collision_steps"] = steps;
   out["collision_steps_shortened"] = shortened_steps;
   out["broadphase_candidates"] = broadphase_candidates;
+  out["broadphase_tree_updates"] = broadphase_tree_updates;
+  out["broadphase_pairs_kept"] = broadphase_pairs_kept;
   out["narrowphase_pairs"] = narrowphase_pairs;
   out["impact_searches"] = impact_searches;
   out["impact_iterations"] = impact_iterations;

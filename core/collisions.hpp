@@ -9,8 +9,8 @@
 // One collision step from an accepted state (t0, y0), §2.5.1's double buffer,
 // island by island (core/collision_step.hpp):
 //   1. integrate the world to t1 = t0 + step;
-//   2. broadphase (sort and sweep over bounding spheres, grown by how far each
-//      body can move in the step) and narrowphase at t1: the separating-axis
+//   2. broadphase (over bounding spheres grown by how far each body can move
+//      in the step, core/broadphase.hpp) and narrowphase at t1: the separating-axis
 //      depth, and for pairs in contact the contact manifold (method
 //      "manifold", core/manifold.hpp) or the report's detector (method
 //      "report", fig. 7); the grown spheres' overlaps link the bodies into
@@ -90,6 +90,7 @@ inline constexpr double kVelocityTolerance = 1e-11;
 
 struct CollisionCounters {
   std::uint64_t steps = 0, shortened_steps = 0, broadphase_candidates = 0, narrowphase_pairs = 0;
+  std::uint64_t broadphase_tree_updates = 0, broadphase_pairs_kept = 0;  // summed over detections
   std::uint64_t impact_searches = 0, impact_iterations = 0, impact_evaluations = 0, unresolved_searches = 0;
   std::uint64_t impact_interpolations = 0, impact_interpolation_misses = 0;  // impact_motion "interpolate"
   std::uint64_t contacts = 0, impulses = 0, resting_contacts = 0, sweeps = 0, corrections = 0;
@@ -150,10 +151,12 @@ struct Collider {
   using World = std::span<const int>;
   CollisionSetup setup;
   mutable CollisionCounters counters;
+  mutable Broadphase<Spheres> broadphase_;  // its trees and pairs persist between detections
 
   static Collider build(const Scene& scene, const Model& m, Profile& profile) {
     Collider c;
     c.setup = collision_setup(scene);
+    c.broadphase_ = Broadphase<Spheres>(c.setup.settings.broadphase);
     {
       ScopedStage timed(profile, Stage::bounding_volumes);
       std::mt19937_64 rng(1);  // Welzl's shuffle: fixed, so runs repeat exactly
@@ -201,39 +204,32 @@ struct Collider {
     {
       ScopedStage timed(profile, Stage::broadphase);
       pose = poses(m, y, world);
-      // The spheres in a frame at the bodies' mean position (issue #16: a
-      // conformal sphere stores ½|c|² beside c, so world coordinates 1e5 m
-      // from the origin cost the cga overlap test 10 digits and it missed the
-      // pair; the narrowphase works per pair about its own local origin).
-      // Overlap does not depend on the frame, so the pairs are the same.
-      Vec3 frame = Vec3::Zero();
-      for (std::size_t k = 0; k < n; ++k) frame += pose[k].position;
-      if (n > 0) frame /= static_cast<double>(n);
-      using Sphere = typename Spheres::Sphere;
-      std::vector<Sphere> spheres, grown;
-      spheres.reserve(n);
-      for (std::size_t k = 0; k < n; ++k)
-        spheres.push_back(
-            Spheres::sphere(pose[k].apply(setup.sphere_centre[world[k]]) - frame, setup.sphere_radius[world[k]]));
-      if (margin.empty()) {
-        pairs = sort_and_sweep<Spheres>(std::span<const Sphere>(spheres)).pairs;
-      } else {
-        grown.reserve(n);
-        for (std::size_t k = 0; k < n; ++k)
-          grown.push_back(Spheres::sphere(pose[k].apply(setup.sphere_centre[world[k]]) - frame,
-                                          setup.sphere_radius[world[k]] + margin[k]));
-        d.candidates = sort_and_sweep<Spheres>(std::span<const Sphere>(grown)).pairs;
-        for (const auto& [i, j] : d.candidates)
-          if (Spheres::overlap(spheres[static_cast<std::size_t>(i)], spheres[static_cast<std::size_t>(j)]))
-            pairs.emplace_back(i, j);
+      // The method, the state it keeps and the frame the spheres are held in:
+      // core/broadphase.hpp. Only the world keeps its broadphase between
+      // detections; an island's group (its bodies renumbered, detected in
+      // sub-steps) is swept afresh.
+      std::vector<Vec3> centres(n);
+      std::vector<double> radii(n);
+      std::vector<char> fixed(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        centres[k] = pose[k].apply(setup.sphere_centre[world[k]]);
+        radii[k] = setup.sphere_radius[world[k]];
+        fixed[k] = setup.is_static[world[k]];
       }
-      counters.broadphase_candidates += margin.empty() ? pairs.size() : d.candidates.size();
+      BroadphaseResult found = world.data() == setup.everyone.data()
+                                   ? broadphase_.find(centres, radii, fixed, margin)
+                                   : Broadphase<Spheres>(BroadphaseMethod::sweep).find(centres, radii, fixed, margin);
+      pairs = std::move(found.pairs);
+      d.candidates = std::move(found.candidates);
+      counters.broadphase_candidates += static_cast<std::uint64_t>(found.counters.candidates);
+      counters.broadphase_tree_updates += static_cast<std::uint64_t>(found.counters.tree_updates);
+      counters.broadphase_pairs_kept += static_cast<std::uint64_t>(found.counters.pairs_kept);
     }
     ScopedStage timed(profile, Stage::narrowphase);
     const auto method = setup.settings.method == ContactMethod::report ? collision::Method::sat_then_report
                                                                        : collision::Method::sat_then_manifold;
     ++detection_;
-    if (world.size() == setup.meshes.size()) hints_.next();  // a detection of everyone: the pairs it meets are the ones kept
+    if (world.data() == setup.everyone.data()) hints_.next();  // the world's detection: a new round of pairs
     for (auto [i, j] : pairs) {
       if (setup.is_static[world[i]] && setup.is_static[world[j]]) continue;
       if (world[i] > world[j]) std::swap(i, j);  // a < b in the world: every group sees a pair the same way
@@ -521,9 +517,23 @@ struct Collider {
     if (std::find(correct.begin(), correct.end(), 1) == correct.end()) return;
     std::vector<int> points(correct.size(), 0);
     for (const auto& r : rows) ++points[r.hit];
+    // A face's rows act at the centres along one normal: the same row, whose
+    // target is the deepest corner's (four copies with their own targets are
+    // the same problem, solved slowly: the copies fight over one degree of
+    // freedom, and no exact step can satisfy them all).
+    std::vector<int> face_row(correct.size(), -1);
     for (const auto& r : rows) {
-      Row p = r;
+      const double target = correct[r.hit] ? std::max(0.0, r.depth - 0.25 * tol) : 0.0;
       if (points[r.hit] >= 3) {  // a face: at the centres, no turn
+        if (face_row[r.hit] >= 0) {
+          Row& q = fix[static_cast<std::size_t>(face_row[r.hit])];
+          q.target = std::max(q.target, target);
+          continue;
+        }
+        face_row[r.hit] = static_cast<int>(fix.size());
+      }
+      Row p = r;
+      if (points[r.hit] >= 3) {
         const auto& ma = motion[r.sa];
         const auto& mb = motion[r.sb];
         p.arm_a = Bodies::arm(ma, Bodies::position(ma), r.n);
@@ -531,7 +541,7 @@ struct Collider {
         p.k = Bodies::inverse_effective_mass(ma, p.arm_a) + Bodies::inverse_effective_mass(mb, p.arm_b);
       }
       p.lambda = 0;
-      p.target = correct[r.hit] ? std::max(0.0, r.depth - 0.25 * tol) : 0.0;
+      p.target = target;
       fix.push_back(p);
     }
     Motions pseudo;

@@ -518,8 +518,9 @@ class Loader {
       });
       return a;
     }
-    static constexpr Keys<8> keys = {"type",   "restitution",    "penetration_tolerance", "step", "time_of_impact",
-                                     "impact_motion", "method", "reuse"};
+    static constexpr Keys<9> keys = {"type",           "restitution",   "penetration_tolerance", "step",
+                                     "time_of_impact", "impact_motion", "method",                "broadphase",
+                                     "reuse"};
     Obj o(v, keys);
     Collisions c;
     if (auto x = o.opt("method")) {
@@ -542,6 +543,13 @@ class Loader {
       if (m == "integrate") c.impact_motion = ImpactMotion::integrate;
       else if (m == "interpolate") c.impact_motion = ImpactMotion::interpolate;
       else x->expected("\"integrate\" or \"interpolate\"");
+    }
+    if (auto x = o.opt("broadphase")) {
+      const std::string m = str(*x);
+      if (m == "sweep") c.broadphase = BroadphaseMethod::sweep;
+      else if (m == "aabb_tree") c.broadphase = BroadphaseMethod::aabb_tree;
+      else if (m == "sphere_tree") c.broadphase = BroadphaseMethod::sphere_tree;
+      else x->expected("\"sweep\", \"aabb_tree\" or \"sphere_tree\"");
     }
     if (auto x = o.opt("restitution")) c.restitution = number(*x, Range::unit);
     if (auto x = o.opt("penetration_tolerance")) c.penetration_tolerance = number(*x, Range::positive);

@@ -68,9 +68,14 @@ struct AttractionToPoint { Vec3 point{0, 0, 0}; double D = 0; double softening =
 //     incident face along the axis of minimum penetration, core/manifold.hpp)
 //     or "report" (fig. 7's vertex-in-body and edge-through-face detector,
 //     which misses faces meeting faces: kept to compare with).
+//   broadphase: which pairs get the narrowphase, all methods giving the same
+//     pairs (core/broadphase.hpp): "aabb_tree" (default; a dynamic tree of
+//     boxes with persistent pairs), "sphere_tree" (the same tree over the
+//     backend's spheres, §4.2.2) or "sweep" (sort and sweep on one axis).
 enum class TimeOfImpact { bisection, illinois, golden_section, conservative_advancement };
 enum class ImpactMotion { integrate, interpolate };
 enum class ContactMethod { manifold, report };
+enum class BroadphaseMethod { sweep, aabb_tree, sphere_tree };
 struct Collisions {
   double restitution = 0.5;
   double penetration_tolerance = 1e-4;
@@ -78,6 +83,7 @@ struct Collisions {
   TimeOfImpact time_of_impact = TimeOfImpact::bisection;
   ImpactMotion impact_motion = ImpactMotion::integrate;
   ContactMethod method = ContactMethod::manifold;
+  BroadphaseMethod broadphase = BroadphaseMethod::aabb_tree;  // the fastest, measured: README
   // Each body's narrowphase geometry built once per detection and each pair's
   // separating axis kept between detections (issue #14); false rebuilds both
   // bodies for every pair and remembers nothing: the same run, slower (for

@@ -18,6 +18,7 @@ packages=(
   python3                  # scripts/bench-ratios.py (README tables)
   gnuplot-nox              # plots: work-precision diagrams, report figures
   chromium                 # the harness test renders report.html headless
+  libjs-three              # three.js (non-module build), inlined into replay.html
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -30,6 +30,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -469,10 +470,102 @@ TYPED_TEST_P(BoundingVolumeCases, OverlapAgreesWithTheDistanceTest) {
   EXPECT_FALSE(Ops::overlap(Ops::sphere(Vec3(0, 0, 0), 1), Ops::sphere(Vec3(2.5, 0, 0), 1)));
 }
 
+// The sphere trees' node operations (issue #14; core/tree_broadphase.hpp)
+// against a closed form evaluated in long double from the centres and radii
+// (the smallest ball holding two balls: the larger one if it holds the other,
+// else R = ½(d + ρ1 + ρ2) centred on the line of centres), against the
+// distance test for encloses (d ≤ ρo − ρi), and against the other backend, on
+// 20,000 pairs like OverlapAgreesWithTheDistanceTest's (centres within ±2,
+// radii 0.05–1.5; a third nested, some concentric). Tolerance 1e-11: inputs of
+// size s ≤ 5; the conformal forms read radii from inner products of
+// components up to ½s², whose rounding ~ε·s⁴ ≈ 1.4e-13 becomes ~ε·s⁴/ρ ≤
+// 3e-12 in a radius of 0.05 (the traditional forms: ~1e-15). encloses is
+// compared outside the band where the conformal test's sign is rounding's: it
+// decides by So·Si − ρoρi = ½((ρo − ρi)² − d²), read from products of size
+// s² (rounding ~1e-15·s²), so outside |(ρo − ρi)² − d²| ≤ 1e-13·s². (Near
+// coincident centres that band is a room ρo − ρi of √1e-13·s ≈ 3e-7·s: the
+// conformal form cannot tell nearly equal concentric spheres apart more
+// finely; the tree's fat volumes leave a room of 0.4 ρ.)
+TYPED_TEST_P(BoundingVolumeCases, TreeNodeOperationsAgreeWithTheDistances) {
+  using Ops = TypeParam;
+  using O = OtherOps<Ops>;
+  const double tol = 1e-11;
+  std::mt19937_64 g(15);
+  std::uniform_real_distribution<double> u(-2, 2), rad(0.05, 1.5), f(0, 1), by(0, 0.5);
+  Worst worst;
+  int nested = 0, checked = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 c1(u(g), u(g), u(g));
+    const double r1 = rad(g);
+    Vec3 c2(u(g), u(g), u(g));
+    double r2 = rad(g);
+    if (i % 3 == 0) {
+      c2 = c1 + 0.45 * r1 * f(g) * Vec3(u(g), u(g), u(g)).normalized();
+      r2 = (r1 - (c2 - c1).norm()) * (0.05 + 0.9 * f(g));
+      if (i % 30 == 0) c2 = c1;
+    }
+    long double d2 = 0;
+    for (int k = 0; k < 3; ++k) d2 += (static_cast<long double>(c2[k]) - c1[k]) * (static_cast<long double>(c2[k]) - c1[k]);
+    const long double d = std::sqrt(d2);
+    Vec3 want_c;
+    long double want_r;
+    if (d + r2 <= r1) want_c = c1, want_r = r1;
+    else if (d + r1 <= r2) want_c = c2, want_r = r2;
+    else {
+      want_r = 0.5L * (d + r1 + r2);
+      const long double t = (want_r - r1) / d;
+      for (int k = 0; k < 3; ++k) want_c[k] = static_cast<double>(c1[k] + t * (static_cast<long double>(c2[k]) - c1[k]));
+    }
+    const auto s1 = Ops::sphere(c1, r1), s2 = Ops::sphere(c2, r2);
+    const auto e = Ops::enclosing(s1, s2);
+    const double ec = (Ops::centre(e) - want_c).norm(), er = std::abs(Ops::radius(e) - static_cast<double>(want_r));
+    worst.see(ec, tol), worst.see(er, tol);
+    EXPECT_LE(ec, tol) << i;
+    EXPECT_LE(er, tol) << i;
+    const auto swapped = Ops::enclosing(s2, s1);
+    EXPECT_LE((Ops::centre(swapped) - Ops::centre(e)).norm(), tol) << i;
+    EXPECT_NEAR(Ops::radius(swapped), Ops::radius(e), tol) << i;
+    const auto eo = O::enclosing(O::sphere(c1, r1), O::sphere(c2, r2));
+    EXPECT_LE((Ops::centre(e) - O::centre(eo)).norm(), tol) << i;
+    EXPECT_NEAR(Ops::radius(e), O::radius(eo), tol) << i;
+    EXPECT_NEAR(Ops::radius_squared(e), Ops::radius(e) * Ops::radius(e), 2 * tol) << i;
+    const double grow = by(g);
+    const auto grown = Ops::grown(s1, grow);
+    EXPECT_LE((Ops::centre(grown) - c1).norm(), tol) << i;
+    EXPECT_NEAR(Ops::radius(grown), r1 + grow, tol) << i;
+    const double scale = c1.norm() + c2.norm() + r1 + r2;
+    for (const auto& [outer, inner, ro, ri] : {std::tuple{s1, s2, r1, r2}, std::tuple{s2, s1, r2, r1}}) {
+      if (std::abs((ro - ri) * (ro - ri) - static_cast<double>(d2)) <= 1e-13 * scale * scale) continue;
+      EXPECT_EQ(Ops::encloses(outer, inner), d <= ro - ri) << i;
+      ++checked;
+      nested += d <= ro - ri;
+    }
+    // The enclosing sphere holds both, once they are shrunk by 1e-6·s (the
+    // band above).
+    EXPECT_TRUE(Ops::encloses(e, Ops::grown(s1, -1e-6 * scale)) && Ops::encloses(e, Ops::grown(s2, -1e-6 * scale)))
+        << i;
+  }
+  EXPECT_GT(nested, 5000);
+  std::printf("[ encloses: %d cases, %d nested ]\n", checked, nested);
+  // Exact cases (integers): internally tangent and equal spheres are enclosed;
+  // coincident centres give the larger sphere; externally tangent give the
+  // sphere through both far points.
+  const auto S = [](double x, double r) { return Ops::sphere(Vec3(x, 0, 0), r); };
+  EXPECT_TRUE(Ops::encloses(S(0, 2), S(1, 1)));
+  EXPECT_TRUE(Ops::encloses(S(0, 1), S(0, 1)));
+  EXPECT_FALSE(Ops::encloses(S(0, 1), S(0, 2)));
+  EXPECT_FALSE(Ops::encloses(S(0, 2), S(1.5, 1)));
+  EXPECT_EQ(Ops::radius(Ops::enclosing(S(0, 1), S(0, 1))), 1.0);
+  EXPECT_EQ(Ops::radius(Ops::enclosing(S(3, 1), S(3, 2))), 2.0);
+  EXPECT_EQ(Ops::radius(Ops::enclosing(S(0, 1), S(2, 1))), 2.0);
+  EXPECT_EQ(Ops::centre(Ops::enclosing(S(0, 1), S(2, 1))), Vec3(1, 0, 0));
+}
+
 REGISTER_TYPED_TEST_SUITE_P(BoundingVolumeCases, WelzlAndExhaustiveEqualTheBruteForceMinimum,
                             WelzlDoesNotDependOnTheSeed, KnownMinimalSpheres, CollinearAndCoplanarSets,
                             DegenerateSupportSetsGetTheSmallestSphereThroughThem,
                             AThreePointSphereContainingAllNeedNotBeTheMinimum, ConstructionsAgreeWithTheOtherBackend,
-                            ContainsUsesTheSideConvention, OverlapAgreesWithTheDistanceTest);
+                            ContainsUsesTheSideConvention, OverlapAgreesWithTheDistanceTest,
+                            TreeNodeOperationsAgreeWithTheDistances);
 
 }  // namespace gacompare::testing

@@ -1,8 +1,9 @@
 #pragma once
 // Bounding spheres, traditional algebra (issue #6, §2.4.1): the SphereOps policy
-// that core/bounding_volume.hpp (exhaustive search, Welzl) and
-// core/broadphase.hpp (sort and sweep) run on. A sphere is a centre and a radius
-// (4 numbers; §2.4.1 notes the dual sphere's 5). Twin: cga/bounding_volume.hpp,
+// that core/bounding_volume.hpp (exhaustive search, Welzl), core/broadphase.hpp
+// (sort and sweep) and core/tree_broadphase.hpp (the sphere tree) run on. A
+// sphere is a centre and a radius (4 numbers; §2.4.1 notes the dual sphere's
+// 5). Twin: cga/bounding_volume.hpp,
 // with the same names in the same order: put them side by side and only the
 // algebra differs.
 #include "core/bounding_volume.hpp"
@@ -49,6 +50,28 @@ struct SphereOps {
     const double r = s1.radius + s2.radius;
     return (s2.centre - s1.centre).squaredNorm() <= r * r;
   }
+
+  // The sphere trees' node operations (issue #14, §4.2.2; core/tree_broadphase.hpp).
+  // The smallest sphere enclosing two spheres: one of them when it holds the
+  // other, else centred on the line of centres, R = ½(d + ρ1 + ρ2), its
+  // surface touching both far sides.
+  static Sphere enclosing(const Sphere& s1, const Sphere& s2) {
+    const Vec3 d = s2.centre - s1.centre;
+    const double dist = d.norm();
+    if (dist + s2.radius <= s1.radius) return s1;
+    if (dist + s1.radius <= s2.radius) return s2;
+    const double R = 0.5 * (dist + s1.radius + s2.radius);
+    return {s1.centre + d * ((R - s1.radius) / dist), R};
+  }
+  // The outer ball holds the inner one: d ≤ ρo − ρi, squared (no root).
+  static bool encloses(const Sphere& outer, const Sphere& inner) {
+    const double room = outer.radius - inner.radius;
+    return room >= 0 && (inner.centre - outer.centre).squaredNorm() <= room * room;
+  }
+  // The same centre, the radius larger by `by`.
+  static Sphere grown(const Sphere& s, double by) { return {s.centre, s.radius + by}; }
+  // ρ², the tree's cost (proportional to the surface area).
+  static double radius_squared(const Sphere& s) { return s.radius * s.radius; }
 
   static Vec3 centre(const Sphere& s) { return traditional::centre(s); }
   static double radius(const Sphere& s) { return traditional::radius(s); }

@@ -1,6 +1,7 @@
 // The gacompare command line end to end: the files it writes, their fields, and
 // its exit codes (0 success, 1 a run failed, 2 bad usage or input).
 #include "cli_run.hpp"
+#include "csv_fields.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -43,7 +44,29 @@ TEST(Cli, CompareWritesResultsAndReportForBothBackends) {
   EXPECT_FALSE(j["tool"]["version"].get<std::string>().empty());
   EXPECT_EQ(j["scene"]["name"], "projectile_linear_drag");
   EXPECT_EQ(j["scene"]["sha256"].get<std::string>().size(), 64u);
-  for (const char* k : {"cpu", "compiler", "date"}) EXPECT_FALSE(j["machine"][k].get<std::string>().empty()) << k;
+  for (const char* k : {"cpu", "compiler", "date", "flags", "build_type"})
+    EXPECT_FALSE(j["machine"][k].get<std::string>().empty()) << k;
+  EXPECT_GE(j["machine"]["logical_cpus"].get<int>(), 1);
+  EXPECT_GE(j["machine"]["usable_cpus"].get<int>(), 1);
+  EXPECT_LE(j["machine"]["usable_cpus"].get<int>(), j["machine"]["logical_cpus"].get<int>());
+  for (const char* when : {"start", "end"}) {
+    ASSERT_EQ(j["machine"]["load_average"][when].size(), 3u) << when;
+    EXPECT_GE(j["machine"]["load_average"][when][0].get<double>(), 0.0) << when;
+  }
+  EXPECT_NE(j["machine"]["flags"].get<std::string>().find("-O"), std::string::npos);  // a Release build
+  // The commit this binary was built at: the test command builds before it
+  // tests, so it is the checkout's HEAD (a stale binary after a commit fails
+  // here until it is rebuilt). Dirty is a boolean in a git checkout.
+  FILE* git = ::popen(("git -C " + std::string(GACOMPARE_SOURCE_DIR) + " rev-parse HEAD 2>/dev/null").c_str(), "r");
+  char head[64] = {0};
+  const bool have_git = git && std::fgets(head, sizeof head, git) != nullptr;
+  if (git) ::pclose(git);
+  if (have_git) {
+    EXPECT_EQ(j["machine"]["git"]["commit"], std::string(head, 40));
+    EXPECT_TRUE(j["machine"]["git"]["dirty"].is_boolean());
+  } else {
+    EXPECT_EQ(j["machine"]["git"]["commit"], "unknown");
+  }
   ASSERT_EQ(j["runs"].size(), 2u);
   EXPECT_EQ(j["runs"][0]["backend"], "traditional");
   EXPECT_EQ(j["runs"][1]["backend"], "cga");
@@ -150,6 +173,59 @@ TEST(Cli, BadUsageExitsTwo) {
   EXPECT_EQ(gacompare("compare " + kScene + " --repeat 0").code, 2);
 }
 
+// Every refusal is one line naming what was wrong and what would be right.
+TEST(Cli, MistakesGetOneLineSayingWhatWasMeant) {
+  auto one_line = [](const Result& r, const std::string& says) {
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  };
+  one_line(gacompare("comapre " + kScene), "'comapre' is not a command (run, compare, check, sweep, merge, diff, list, "
+                                           "collide or corpus); did you mean 'compare'?");
+  one_line(gacompare("--quiet frobnicate"), "'frobnicate' is not a command");
+  one_line(gacompare("run " + kScene + " --backend cgaa"), "--backend: 'cgaa' is not a backend (traditional, cga or "
+                                                           "bullet); did you mean 'cga'?");
+  one_line(gacompare("run " + kScene), "--backend is required");
+  one_line(gacompare("compare " + kScene + " --repeat 0"), "--repeat: expected a whole number ≥ 1, got 0");
+  one_line(gacompare("compare " + kScene + " --repeat 99999999999999"), "got 99999999999999, above 2147483647");
+  one_line(gacompare("compare " + kScene + " --repeat x"), "--repeat: expected a whole number ≥ 1, got 'x'");
+  one_line(gacompare("compare " + kScene + " --accuracy -1"), "--accuracy: expected a number > 0, got '-1'");
+  one_line(gacompare("sweep " + kScene + " --repeats 3 --out x"), "--repeats is spelt --repeat in every command now");
+  one_line(gacompare("compare --backends cga traditional " + kScene), "'traditional' is a backend, not a scene file");
+}
+
+// A list option takes one value per use (comma-separated), so it cannot
+// swallow the scenes after it; --help shows every default.
+TEST(Cli, OptionsBeforeTheScenesLeaveThemAloneAndHelpShowsDefaults) {
+  const fs::path out = fresh_dir("backends_first");
+  const Result r = gacompare("compare --backends cga,traditional --repeat 1 " + kScene + " --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = read_json(out / "results.json");
+  ASSERT_EQ(j["runs"].size(), 2u);
+  EXPECT_EQ(j["runs"][0]["backend"], "cga");
+  const Result help = gacompare("compare --help");
+  EXPECT_NE(help.out.find("--repeat INT=5"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("--backends TEXT=[traditional,cga,bullet]"), std::string::npos) << help.out;
+  EXPECT_NE(gacompare("sweep --help").out.find("--repeat INT=3"), std::string::npos);
+}
+
+// Progress: one line per scene and repeat on stderr even when it is a file (as
+// here), none with --quiet; stdout holds the report folder alone either way.
+TEST(Cli, ProgressOnStderrUnlessQuiet) {
+  const std::string data = std::string(GACOMPARE_DATA_DIR) + "/scenes/";
+  const std::string cmd = "compare " + kScene + " " + data + "falling_quadratic_drag.json --repeat 2 --out ";
+  const fs::path loud_out = fresh_dir("loud");
+  const Result loud = gacompare(cmd + loud_out.string());
+  ASSERT_EQ(loud.code, 0) << loud.err;
+  EXPECT_EQ(std::count(loud.err.begin(), loud.err.end(), '\n'), 4) << loud.err;  // 2 scenes x 2 repeats
+  EXPECT_NE(loud.err.find("gacompare: [2/2] falling_quadratic_drag: repeat 2/2, traditional "), std::string::npos)
+      << loud.err;
+  EXPECT_EQ(loud.out, loud_out.string() + "\n");
+  const Result quiet = gacompare(cmd + fresh_dir("quiet").string() + " --quiet");
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+}
+
 TEST(Cli, FailedRunExitsOneAndKeepsItsResults) {
   const fs::path dir = fresh_dir("nan");
   write_text(dir / "nan.json", R"({"name": "nan", "duration": 1.0, "output": {"every": 0.5},
@@ -206,6 +282,98 @@ TEST(Cli, CheckWithoutOrWithABrokenBaselineExitsTwo) {
   EXPECT_NE(broken.err.find("projectile_linear_drag.json: cannot parse this baseline"), std::string::npos) << broken.err;
 }
 
+// check --max-time-ratio: a run against its own fresh baseline passes; a
+// baseline doctored to have run 100 times faster fails; one stored without its
+// repeats' times cannot be held to a ratio and says so.
+TEST(Cli, CheckMaxTimeRatioFailsOnASlowerRun) {
+  const fs::path dir = fresh_dir("check_time");
+  ASSERT_EQ(gacompare("check " + kScene + " --baseline " + dir.string() + " --update --repeat 3 --quiet").code, 0);
+  const std::string check = "check " + kScene + " --baseline " + dir.string() + " --repeat 3 --quiet --max-time-ratio ";
+  const Result same = gacompare(check + "5");
+  EXPECT_EQ(same.code, 0) << same.out;
+  EXPECT_NE(same.out.find("| time / baseline time |"), std::string::npos) << same.out;
+  const fs::path file = dir / "projectile_linear_drag.json";
+  json j = read_json(file);
+  for (auto& run : j["runs"])
+    for (auto& t : run["wall_seconds_each_repeat"]) t = t.get<double>() / 100;
+  write_text(file, j.dump());
+  const Result slower = gacompare(check + "5");
+  EXPECT_EQ(slower.code, 1) << slower.out;
+  EXPECT_NE(slower.out.find("the whole interval lies above 5"), std::string::npos) << slower.out;
+  for (auto& run : j["runs"]) run.erase("wall_seconds_each_repeat");
+  write_text(file, j.dump());
+  const Result old = gacompare(check + "5");
+  EXPECT_EQ(old.code, 1) << old.out;
+  EXPECT_NE(old.out.find("this baseline stores no repeats' times"), std::string::npos) << old.out;
+  EXPECT_EQ(gacompare("check " + kScene + " --baseline " + dir.string() + " --max-time-ratio 2").code, 2);  // 1 repeat
+}
+
+// gacompare diff on two real runs of the same scenes (times within noise,
+// states bit-identical: exit 0), then on a copy doctored to be slower in one
+// stage and on one doctored to have moved (exit 1 each).
+TEST(Cli, DiffPassesEqualRunsAndFailsASlowerStageOrAMovedState) {
+  const std::string data = std::string(GACOMPARE_DATA_DIR) + "/scenes/";
+  const std::string scenes = data + "tumbling_box.json " + kScene;
+  const fs::path a = fresh_dir("diff_a"), b = fresh_dir("diff_b");
+  // 9 repeats: a loaded machine slows a repeat now and then by 20x; the
+  // medians of 9 see through one or two (compare/stats.hpp).
+  ASSERT_EQ(gacompare("compare " + scenes + " --repeat 9 --quiet --out " + a.string()).code, 0);
+  ASSERT_EQ(gacompare("compare " + scenes + " --repeat 9 --quiet --out " + b.string()).code, 0);
+  // A run against itself: every interval holds 1, whatever the machine did.
+  EXPECT_EQ(gacompare("diff " + a.string() + " " + a.string() + " --max-time-ratio 1.0001").code, 0);
+  // 3: the two runs share this machine seconds apart; a whole interval above
+  // 3x is a regression, not its load.
+  const Result equal = gacompare("diff " + a.string() + " " + b.string() + " --max-time-ratio 3");
+  EXPECT_EQ(equal.code, 0) << equal.out;
+  EXPECT_NE(equal.out.find("| tumbling_box | cga | `integrate` time, B / A |"), std::string::npos) << equal.out;
+  EXPECT_NE(equal.out.find("| tumbling_box | traditional | largest orientation difference, B − A (rad) | 0 |"),
+            std::string::npos)
+      << equal.out;
+  EXPECT_NE(equal.out.find("equal everywhere"), std::string::npos) << equal.out;
+  EXPECT_NE(equal.out.find("A: " + a.string()), std::string::npos) << equal.out;
+
+  // B's cga integrate 10x slower on tumbling_box.
+  const fs::path slow = fresh_dir("diff_slow");
+  fs::copy(a, slow, fs::copy_options::recursive);
+  json j = read_json(slow / "tumbling_box" / "results.json");
+  for (auto& t : j["runs"][1]["stages"]["integrate"]["seconds_each_repeat"]) t = t.get<double>() * 10;
+  write_text(slow / "tumbling_box" / "results.json", j.dump());
+  const Result slower = gacompare("diff " + a.string() + " " + slow.string() + " --max-time-ratio 3");
+  EXPECT_EQ(slower.code, 1) << slower.out;
+  EXPECT_NE(slower.out.find("| tumbling_box | cga | `integrate` time, B / A |"), std::string::npos);
+  EXPECT_NE(slower.out.find("**FAIL**: A "), std::string::npos) << slower.out;
+  EXPECT_NE(slower.out.find("the whole interval lies above 3"), std::string::npos) << slower.out;
+  EXPECT_EQ(gacompare("diff " + a.string() + " " + slow.string()).code, 0);  // time reported, not checked
+
+  // B's traditional box 1 µm higher at one sample: beyond the scene's 1e-9 m.
+  const fs::path moved = fresh_dir("diff_moved");
+  fs::copy(a / "tumbling_box" / "results.json", moved.string() + ".json");
+  j = read_json(moved.string() + ".json");
+  auto& z = j["runs"][0]["samples"][100]["bodies"]["box"]["position"][2];
+  z = z.get<double>() + 1e-6;
+  write_text(moved.string() + ".json", j.dump());
+  const std::string diff_moved = "diff " + (a / "tumbling_box" / "results.json").string() + " " + moved.string() + ".json";
+  const Result far = gacompare(diff_moved);
+  EXPECT_EQ(far.code, 1) << far.out;
+  EXPECT_NE(far.out.find("| tumbling_box | traditional | largest position difference, B − A (m) | 1e-06 | 1e-09 | **FAIL**: "
+                         "worst: body 'box'"),
+            std::string::npos)
+      << far.out;
+  EXPECT_EQ(gacompare(diff_moved + " --tolerance 1e-5").code, 0);
+
+  const Result missing = gacompare("diff " + a.string() + " /no/such/run");
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find("/no/such/run: no such results.json or report folder"), std::string::npos) << missing.err;
+  j = read_json(a / "tumbling_box" / "results.json");
+  j["scene"].erase("bodies");
+  write_text(moved.string() + ".json", j.dump());
+  const Result old = gacompare(diff_moved);
+  EXPECT_EQ(old.code, 2);
+  EXPECT_NE(old.err.find("/scene/bodies: missing (written before results.json carried it: run it again)"),
+            std::string::npos)
+      << old.err;
+}
+
 // The error columns of a sweep.md's table rows (all but the last four: time,
 // steps, f evals, Pareto mark): deterministic, unlike the times.
 std::string error_columns(const fs::path& md) {
@@ -221,20 +389,11 @@ std::string error_columns(const fs::path& md) {
   return out;
 }
 
-// One line of a CSV split at its commas.
-std::vector<std::string> fields(const std::string& line) {
-  std::vector<std::string> out(1);
-  for (char c : line) {
-    if (c == ',') out.emplace_back();
-    else out.back().push_back(c);
-  }
-  return out;
-}
 
 TEST(Cli, ShardedSweepMergesIntoTheUnshardedOneAndResumes) {
   const std::string sweep = "sweep " + std::string(GACOMPARE_DATA_DIR) +
                             "/scenes/kepler.json --solvers cash_karp45,rk4 --tolerances 1e-4:1e-7 --steps 1e-2:1 "
-                            "--repeats 1 --quiet --out ";
+                            "--repeat 1 --quiet --out ";
   const fs::path whole = fresh_dir("sweep_whole");
   const Result r = gacompare(sweep + whole.string());
   ASSERT_EQ(r.code, 0) << r.err;
@@ -270,18 +429,18 @@ TEST(Cli, ShardedSweepMergesIntoTheUnshardedOneAndResumes) {
 TEST(Cli, SweepOfABodyMeasuresEveryErrorAndDrawsOrientation) {
   const std::string sweep = "sweep " + std::string(GACOMPARE_DATA_DIR) +
                             "/scenes/dzhanibekov.json --solvers rk4 --steps 1e-2:1 --no-peer --max-duration 2 "
-                            "--repeats 1 --quiet --out ";
+                            "--repeat 1 --quiet --out ";
   const fs::path dir = fresh_dir("sweep_body");
   ASSERT_EQ(gacompare(sweep + dir.string()).code, 0);
   std::istringstream csv(read_text(dir / "sweep.csv"));
   std::string header, row;
   std::getline(csv, header);
-  const auto names = fields(header);
+  const auto names = csv_fields(header);
   for (const char* c : {"position_error", "orientation_error", "velocity_error", "angular_velocity_error"})
     EXPECT_NE(std::find(names.begin(), names.end(), c), names.end()) << c << " in " << header;
   int rows = 0;
   while (std::getline(csv, row)) {
-    const auto f = fields(row);
+    const auto f = csv_fields(row);
     ASSERT_EQ(f.size(), names.size()) << row;
     auto at = [&](const char* c) { return std::stod(f[std::find(names.begin(), names.end(), c) - names.begin()]); };
     EXPECT_EQ(at("position_error"), 0.0);  // the racket spins about its fixed centre
@@ -310,9 +469,29 @@ TEST(Cli, SweepOfABodyMeasuresEveryErrorAndDrawsOrientation) {
     write_text(e.path(), cell.dump());
     break;
   }
-  EXPECT_NE(gacompare(sweep + dir.string()).err.find("ran 1 unit(s), skipped 1"), std::string::npos);
+  EXPECT_NE(gacompare(sweep + dir.string()).err.find("ran 1 unit(s) (1 done before with other settings, another build "
+                                                     "or format), skipped 1"),
+            std::string::npos);
 
   EXPECT_EQ(gacompare("sweep " + kScene + " --error orientation --out " + fresh_dir("bad_error").string()).code, 2);
+}
+
+// A cell is keyed by everything that changes it (compare/sweep.hpp, cell_key):
+// a resumed sweep with another --max-duration or --repeat runs it again
+// instead of mixing it in.
+TEST(Cli, SweepCellsWithOtherSettingsRunAgain) {
+  const fs::path dir = fresh_dir("sweep_keys");
+  const std::string sweep = "sweep " + std::string(GACOMPARE_DATA_DIR) +
+                            "/scenes/kepler.json --solvers rk4 --steps 1e-2:0 --no-peer --quiet --out " + dir.string();
+  EXPECT_NE(gacompare(sweep + " --repeat 1").err.find("ran 1 unit(s), skipped 0"), std::string::npos);
+  EXPECT_NE(gacompare(sweep + " --repeat 1").err.find("ran 0 unit(s), skipped 1"), std::string::npos);
+  const std::string again = " (1 done before with other settings, another build or format), skipped 0";
+  EXPECT_NE(gacompare(sweep + " --repeat 2").err.find("ran 1 unit(s)" + again), std::string::npos);
+  const Result cut = gacompare(sweep + " --repeat 2 --max-duration 1");
+  EXPECT_NE(cut.err.find("ran 1 unit(s)" + again), std::string::npos) << cut.err;
+  const json cell = read_json(dir / "cells" / "rk4-dt0.01.json");
+  EXPECT_EQ(cell["key"]["repeats"], 2);
+  EXPECT_EQ(cell["key"]["duration"], 1.0);
 }
 
 TEST(Cli, SweepRejectsBadSpecs) {

@@ -96,6 +96,7 @@ TEST(SceneLoad, FullSceneHasEveryValue) {
   EXPECT_DOUBLE_EQ(s.find_effect<AttractionToPoint>()->D, 0.5);
   EXPECT_DOUBLE_EQ(s.find_effect<Collisions>()->restitution, 0.25);
   EXPECT_DOUBLE_EQ(s.find_effect<Collisions>()->penetration_tolerance, 0.001);
+  EXPECT_EQ(s.find_effect<Collisions>()->broadphase, BroadphaseMethod::sphere_tree);
   for (std::size_t i = 0; i < s.effects.size(); ++i)  // kept in file order
     EXPECT_EQ(s.effects[i].index(), i);
 
@@ -184,6 +185,7 @@ TEST(SceneLoad, OptionalKeysTakeTheirDefaults) {
   EXPECT_EQ(s.description, "");
   EXPECT_EQ(s.find_effect<Gravity>()->g, Vec3(0, 0, -9.81));
   EXPECT_EQ(s.find_effect<Collisions>()->restitution, Collisions{}.restitution);
+  EXPECT_EQ(s.find_effect<Collisions>()->broadphase, Collisions{}.broadphase);
   EXPECT_TRUE(s.find_effect<Collisions>()->reuse);
   EXPECT_TRUE(s.particles.empty());
   EXPECT_TRUE(s.constraints.empty());
@@ -384,6 +386,9 @@ std::vector<BadCase> bad_cases() {
       {"RestitutionAboveOne",
        set("/effects/1/restitution", 1.5),
        {": /effects/1/restitution: expected a number in [0, 1], got 1.5"}},
+      {"UnknownBroadphase",
+       set("/effects/1/broadphase", "octree"),
+       {": /effects/1/broadphase: expected \"sweep\", \"aabb_tree\" or \"sphere_tree\", got \"octree\""}},
       {"ZeroPenetrationTolerance",
        set("/effects/1/penetration_tolerance", 0),
        {": /effects/1/penetration_tolerance: expected a number > 0, got 0"}},
