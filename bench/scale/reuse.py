@@ -32,7 +32,7 @@ def run(args, scene, folder):
     path = folder + ".json"
     with open(path, "w") as f:
         json.dump(scene, f)
-    cmd = [args.binary, "compare", path, "--backends", "traditional", "cga", "--repeat", "1", "--out", folder]
+    cmd = [args.binary, "compare", path, "--backends", "traditional,cga", "--repeat", "1", "--out", folder]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     results = json.load(open(os.path.join(folder, "results.json")))
     out = {}
