@@ -21,7 +21,9 @@
 
 #include <Eigen/Geometry>
 
+#include <array>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -152,11 +154,158 @@ const Segments& segments() {
   return s;
 }
 
+// ---- issue #14: a pair as the simulation meets it (sat_then_manifold) ----
+//
+// The corpus's pairs split into apart and overlapping (the reference's yes/no);
+// each item is one pair:
+//   pair_rebuilt: narrowphase on two Placed bodies, their geometry built for
+//     the pair alone (new storage each time: the cost before issue #14 had
+//     the pair's frame in it too);
+//   pair_placed: both Shapes placed afresh in storage kept between items, no
+//     axis remembered (a pair's first detection; `gacompare collide`'s
+//     *_manifold columns);
+//   pair_cached: the Shapes built once, outside the loop: what a pair costs
+//     when its bodies' geometry is shared with other pairs;
+//   pair_moving, pair_coherent: every pair's two bodies turning and sliding a
+//     little each step (0.2 mrad and 0.1 % of their size), their Shapes placed
+//     again each step; without and with the axis remembered from the pair's
+//     last step (temporal coherence).
+const std::vector<std::size_t>& pairs_of(bool overlapping) {
+  static const std::array<std::vector<std::size_t>, 2> ids = [] {
+    std::array<std::vector<std::size_t>, 2> out;
+    const Corpus& c = corpus();
+    for (std::size_t i = 0; i < c.cases.size(); ++i)
+      out[collision::sat_reference(c.cases[i].a(), c.cases[i].b()).depth > 0].push_back(i);
+    return out;
+  }();
+  return ids[overlapping];
+}
+// One item per pair, cycling through the apart or the overlapping ones;
+// query(i, pair, found) asks the i-th of them.
+template <class Query>
+void cycle_pairs(benchmark::State& st, bool overlapping, Query&& query) {
+  const auto& ids = pairs_of(overlapping);
+  std::vector<collision::FeatureContact> found;
+  std::size_t i = 0;
+  for (auto _ : st) {
+    found.clear();
+    benchmark::DoNotOptimize(query(i, corpus().cases[ids[i]], found));
+    if (++i == ids.size()) i = 0;
+  }
+  st.SetItemsProcessed(st.iterations());
+}
+constexpr auto kSimulated = collision::Method::sat_then_manifold;
+template <class Body>
+void pair_rebuilt(benchmark::State& st, bool overlapping) {
+  cycle_pairs(st, overlapping, [](std::size_t, const collision::CollisionCase& k, auto& found) {
+    return collision::narrowphase<Body>(k.a(), k.b(), kSimulated, &found);
+  });
+}
+template <class Body>
+void pair_placed(benchmark::State& st, bool overlapping) {
+  typename Body::Shape a, b;
+  cycle_pairs(st, overlapping, [&](std::size_t, const collision::CollisionCase& k, auto& found) {
+    a.reset(), b.reset();
+    a.place(k.a()), b.place(k.b());
+    return collision::narrowphase<Body>(a, b, kSimulated, &found);
+  });
+}
+template <class Body>
+void pair_cached(benchmark::State& st, bool overlapping) {
+  std::vector<std::pair<typename Body::Shape, typename Body::Shape>> shapes;
+  for (const std::size_t id : pairs_of(overlapping)) shapes.emplace_back(corpus().cases[id].a(), corpus().cases[id].b());
+  cycle_pairs(st, overlapping, [&](std::size_t i, const collision::CollisionCase&, auto& found) {
+    return collision::narrowphase<Body>(shapes[i].first, shapes[i].second, kSimulated, &found);
+  });
+}
+template <class Body>
+void pair_moving(benchmark::State& st, bool overlapping, bool coherent) {
+  struct Moving {
+    typename Body::Shape a, b;
+    collision::SatHint hint;
+  };
+  std::vector<Moving> pairs(pairs_of(overlapping).size());
+  std::array<Eigen::Matrix3d, 17> turn;  // by 0 … 16 × 0.2 mrad
+  for (int q = 0; q < 17; ++q)
+    turn[q] = Eigen::AngleAxisd(2e-4 * q, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  long step = 0;
+  cycle_pairs(st, overlapping, [&](std::size_t i, const collision::CollisionCase& k, auto& found) {
+    // Step `step` of a back-and-forth motion: 16 steps one way, 16 back.
+    const int s = static_cast<int>(step % 32), phase = s < 16 ? s : 32 - s;
+    collision::Placed a = k.a(), b = k.b();
+    a.pose.rotation = turn[phase] * a.pose.rotation;
+    b.pose.position += (1e-3 * phase / 16) * k.mesh_b->size() * Eigen::Vector3d(0.6, 0.0, 0.8);
+    pairs[i].a.place(a), pairs[i].b.place(b);
+    if (i + 1 == pairs.size()) ++step;
+    return collision::narrowphase<Body>(pairs[i].a, pairs[i].b, kSimulated, &found, coherent ? &pairs[i].hint : nullptr);
+  });
+}
+void register_pairs() {
+  for (const bool overlapping : {false, true}) {
+    const std::string kind = overlapping ? "overlapping" : "apart";
+    const auto add = [&](const std::string& what, auto trad, auto cga) {
+      benchmark::RegisterBenchmark(("BM_pair_" + kind + "_" + what + "/traditional").c_str(), trad);
+      benchmark::RegisterBenchmark(("BM_pair_" + kind + "_" + what + "/cga").c_str(), cga);
+    };
+    add("rebuilt", [=](benchmark::State& st) { pair_rebuilt<traditional::Body>(st, overlapping); },
+        [=](benchmark::State& st) { pair_rebuilt<cga::Body>(st, overlapping); });
+    add("placed", [=](benchmark::State& st) { pair_placed<traditional::Body>(st, overlapping); },
+        [=](benchmark::State& st) { pair_placed<cga::Body>(st, overlapping); });
+    add("cached", [=](benchmark::State& st) { pair_cached<traditional::Body>(st, overlapping); },
+        [=](benchmark::State& st) { pair_cached<cga::Body>(st, overlapping); });
+    add("moving", [=](benchmark::State& st) { pair_moving<traditional::Body>(st, overlapping, false); },
+        [=](benchmark::State& st) { pair_moving<cga::Body>(st, overlapping, false); });
+    add("coherent", [=](benchmark::State& st) { pair_moving<traditional::Body>(st, overlapping, true); },
+        [=](benchmark::State& st) { pair_moving<cga::Body>(st, overlapping, true); });
+  }
+}
+
+// Support points (core/shape.hpp): every face of one hull of n vertices
+// against another's vertices, by the scan and by hill climbing from the last
+// face's support, as the face query runs them; one item = one face. The hulls:
+// n random points on a sphere (every one a vertex), the second turned at random.
+template <class Body>
+void support(benchmark::State& st, int n, bool climb) {
+  std::mt19937_64 rng(static_cast<std::uint64_t>(n));
+  std::normal_distribution<double> g;
+  const auto hull = [&] {
+    std::vector<Eigen::Vector3d> p;
+    for (int i = 0; i < n; ++i) p.push_back(Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized());
+    return core::convex_hull(p);
+  };
+  const core::Mesh ma = hull(), mb = hull();
+  const Eigen::Matrix3d turn = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+  const typename Body::Shape a({&ma, {}}), b({&mb, {turn, Eigen::Vector3d(1.5, 0, 0)}});
+  const Body va(a, a.position()), vb(b, b.position());
+  const int planes = static_cast<int>(ma.planes().size());
+  std::vector<typename Body::Plane> toward;
+  for (int k = 0; k < planes; ++k) toward.push_back(va.plane_toward(k, vb));
+  int k = 0, arg = 0;
+  for (auto _ : st) {
+    const auto found = climb ? b.climb(toward[k], arg) : b.scan(toward[k]);
+    benchmark::DoNotOptimize(found);
+    arg = found.second;
+    if (++k == planes) k = 0;
+  }
+  st.SetItemsProcessed(st.iterations());
+  st.counters["vertices"] = static_cast<double>(mb.vertices().size());
+}
+void register_supports() {
+  for (const int n : {8, 12, 16, 24, 32, 48, 64, 128, 256})
+    for (const bool climb : {false, true}) {
+      const std::string op = "BM_support_" + std::to_string(n) + "/", how = climb ? "_climb" : "_scan";
+      benchmark::RegisterBenchmark((op + "traditional" + how).c_str(),
+                                   [=](benchmark::State& st) { support<traditional::Body>(st, n, climb); });
+      benchmark::RegisterBenchmark((op + "cga" + how).c_str(), [=](benchmark::State& st) { support<cga::Body>(st, n, climb); });
+    }
+}
+
 template <class Body>
 void point_in_body(benchmark::State& st) {
   // A 64-vertex-ish hull against the vertices of another: one vertex per item.
   const auto& k = corpus().cases.front();
-  const Body a(k.a(), Eigen::Vector3d::Zero()), b(k.b(), Eigen::Vector3d::Zero());
+  const typename Body::Shape sa(k.a()), sb(k.b());
+  const Body a(sa, sa.position()), b(sb, sb.position());
   const int n = static_cast<int>(k.mesh_b->vertices().size());
   int j = 0;
   for (auto _ : st) {
@@ -246,6 +395,8 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("BM_segment_through_prepared/cga", [](benchmark::State& st) {
     prepared_segments<cga::PreparedTriangle>(st);
   });
+  register_pairs();
+  register_supports();
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

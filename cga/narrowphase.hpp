@@ -1,10 +1,12 @@
 #pragma once
-// The narrowphase's view of a placed convex body in conformal geometric algebra
-// (issue #6, §2.4.3–2.4.4): vertices as conformal points X = up(x), face planes
-// as dual planes π = n̂ + d n, a face test by the inner product X·π = n̂·x − d,
-// edge axes by the dual of the outer product (a ∧ b)* in Cl(3,0), and the
-// meet/reciprocal-frame segment–triangle. The algorithm over it is written
-// once: core/narrowphase.hpp. Twin: traditional/narrowphase.hpp.
+// The narrowphase's algebra in conformal geometric algebra (issue #6,
+// §2.4.3–2.4.4): vertices as conformal points X = up(x), face planes as dual
+// planes π = n̂ + d n, a face test by the inner product X·π = n̂·x − d (each
+// body measured in a unit of its own size: core/shape.hpp, "Units"), edge axes by
+// the dual of the outer product (a ∧ b)* in Cl(3,0), and the
+// meet/reciprocal-frame segment–triangle. What is built once per body and how
+// a pair reads it is written once in core/shape.hpp; the algorithms over it in
+// core/narrowphase.hpp. Twin: traditional/narrowphase.hpp.
 //
 // The rotation reaches the vertices as the rotor's 3×3 matrix, applied once
 // per vertex: the outermorphism form that is GA's best practice for many
@@ -13,75 +15,61 @@
 #include "cga/geometry/entities.hpp"
 #include "cga/segment_triangle.hpp"
 #include "core/narrowphase.hpp"
+#include "core/shape.hpp"
 
+#include <cmath>
 #include <vector>
 
 namespace gacompare::cga {
 
-class Body {
- public:
-  Body(const collision::Placed& placed, const Vec3& origin) : mesh_(placed.mesh) {
-    const Eigen::Matrix3d& r = placed.pose.rotation;
-    const Vec3 t = placed.pose.position - origin;
-    points_.reserve(mesh_->vertices().size());
-    Vec3 sum = Vec3::Zero();
-    for (const Vec3& x : mesh_->vertices()) {
-      const Vec3 y = r * x + t;
-      points_.push_back(up(y));
-      sum += y;
-    }
-    centre_ = sum / static_cast<double>(points_.size());
-    planes_.reserve(mesh_->planes().size());
-    for (const auto& p : mesh_->planes()) {
-      const Vec3 n = r * p.normal;
-      planes_.push_back(plane(n, p.offset + n.dot(t)));
-    }
-  }
-  const core::Mesh& mesh() const { return *mesh_; }
-  Vec3 vertex(int i) const { return detail::euclid(points_[i]); }  // up() gives weight 1: no division
-  Vec3 normal(int k) const { return detail::euclid(planes_[k]); }  // unit: plane() normalises
-  Vec3 centre() const { return centre_; }
-  // §2.4.3: X·π = n̂·x − d, > 0 outside (entities.hpp).
-  double plane_distance(int k, const Body& other, int j) const { return scalar_product(other.points_[j], planes_[k]); }
-  static Vec3 edge_axis(const Vec3& da, const Vec3& db) { return to_eigen(axial(vector3(da) ^ vector3(db))); }
-  // §2.4.4: the edge i0–i1 of body s through triangle k of this body, the
-  // triangle prepared once per body and query (segment_triangle.hpp), the
-  // edge's ends the conformal points s already holds.
-  std::optional<collision::SegmentHit> segment_through(int k, const Body& s, int i0, int i1) const {
-    return prepared_.at(*this, k).through(s.points_[i0], s.points_[i1]);
-  }
-
-  // The contact manifold's algebra (core/manifold.hpp): points as conformal
-  // points, planes as dual planes with the distance X·π, and where a segment
-  // crosses a plane by the meet of their line and the plane (§1.6).
+struct NarrowAlgebra {
   using Point = ConformalPoint;
   using Plane = DualPlane;
-  const Point& vertex_point(int i) const { return points_[i]; }
-  const Plane& face_plane(int k) const { return planes_[k]; }
-  // The dual plane through X with normal s: X⌋(s ∧ n) = s + (s·x) n, written
-  // out (not unit: clipping reads only signs and ratios).
-  static Plane plane_through(const Point& p, const Vec3& s) {
-    const double d = s.dot(detail::euclid(p));
-    return vector5(s.x(), s.y(), s.z(), d, d);
+  using PreparedTriangle = cga::PreparedTriangle;
+
+  static Point lift(const Vec3& x) { return up(x); }
+  static Vec3 position(const Point& p) { return detail::euclid(p); }  // up() gives weight 1: no division
+  // The power of two nearest below the size: X·π's terms of size |d|·½|x|²
+  // stay ≲ 1 (core/shape.hpp, "Units"); a dilation by it is exact.
+  static double unit(double size) { return std::ldexp(1.0, std::ilogb(size)); }
+  // n̂ + d n: a mesh's normals are unit and a rotation keeps them so (to
+  // rounding, as the twin uses them); cga::plane() would divide by |n| again.
+  static Plane plane(const Vec3& normal, double offset) {
+    return vector5(normal.x(), normal.y(), normal.z(), offset, offset);
   }
-  static double distance(const Plane& f, const Point& p) { return scalar_product(p, f); }
-  // The meet of the line X0 ∧ X1 ∧ n with π (§1.6, as in segment_triangle.hpp):
+  static Vec3 normal(const Plane& f) { return detail::euclid(f); }
+  static double offset(const Plane& f) { return f[e5::e]; }         // π = n̂ + d n puts d on e (and ē)
+  // The plane parallel to π at offset d: n̂ + d n, n̂ already unit. (Moving π
+  // by a is the translator's T π T̃ = π + (n̂·a) n; the offset it gives is
+  // computed by the caller, who also rescales it.)
+  static Plane parallel(const Plane& f, double offset) { return vector5(f.c[0], f.c[1], f.c[2], offset, offset); }
+  // §2.4.3: X·π = n̂·x − d, > 0 outside (entities.hpp). The face query's
+  // innermost operation: flattened, because GCC otherwise calls the generic
+  // product (a fold over its table's terms) once per vertex, 30 % of an apart
+  // pair's time (perf, BM_pair_apart_cached/cga); the twin's dot product is
+  // inlined by Eigen.
+  [[gnu::flatten]] static double distance(const Plane& f, const Point& p) { return scalar_product(p, f); }
+  static Vec3 edge_axis(const Vec3& da, const Vec3& db) { return to_eigen(axial(vector3(da) ^ vector3(db))); }
+
+  // The contact manifold's algebra (core/manifold.hpp): the dual plane through
+  // X with normal s, X⌋(s ∧ n) = s + (s·x) n, written out (not unit: clipping
+  // reads only signs and ratios); and where a segment crosses a plane, by the
+  // meet of the line X0 ∧ X1 ∧ n with π (§1.6, as in segment_triangle.hpp):
   // π⌋(X0 ∧ X1 ∧ n) = (π·X0) X1∧n − (π·X1) X0∧n, the flat point of
   // d0 X1 − d1 X0 with weight d0 − d1; the clipper has d0 = π·X0 and d1 = π·X1
   // already, so the meet costs one combination. Its point is lifted again (up):
   // the combination is a flat point, not a null vector.
+  static Plane plane_through(const Point& p, const Vec3& s) {
+    const double d = s.dot(detail::euclid(p));
+    return vector5(s.x(), s.y(), s.z(), d, d);
+  }
   static Point cut(const Point& p0, double d0, const Point& p1, double d1) {
     return up(detail::euclid(d0 * p1 - d1 * p0) * (1 / (d0 - d1)));
   }
-  static Vec3 position(const Point& p) { return detail::euclid(p); }  // up() gives weight 1
-
- private:
-  const core::Mesh* mesh_;
-  std::vector<ConformalPoint> points_;
-  std::vector<DualPlane> planes_;
-  Vec3 centre_;
-  collision::PreparedTriangles<PreparedTriangle> prepared_;
 };
+
+using Shape = collision::Shape<NarrowAlgebra>;
+using Body = collision::BodyView<NarrowAlgebra>;
 
 inline collision::PairContact narrowphase(const collision::Placed& a, const collision::Placed& b,
                                           collision::Method method,

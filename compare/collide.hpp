@@ -14,10 +14,17 @@
 
 namespace gacompare::compare {
 
+// The methods, in the table's order: our two backends with the report's
+// detector (fig. 7) and with what the simulation runs (the separating-axis
+// test stopping at a separating axis, then the contact manifold:
+// sat_then_manifold), the exact reference, the referees.
 inline const std::vector<std::string>& collide_methods() {
-  static const std::vector<std::string> m{"traditional", "cga", "sat", "fcl", "bullet"};
+  static const std::vector<std::string> m{"traditional", "cga", "traditional_manifold", "cga_manifold", "sat", "fcl",
+                                          "bullet"};
   return m;
 }
+// Ours (a disagreement with the reference fails `gacompare collide`).
+inline bool our_method(const std::string& m) { return m.rfind("traditional", 0) == 0 || m.rfind("cga", 0) == 0; }
 
 struct CollideOptions {
   int repeat = 5;                     // timed queries per method and pair (interleaved); the median is reported
@@ -25,8 +32,11 @@ struct CollideOptions {
 };
 
 // One entry per case: {"name", "scale", "touching", and per method {"intersect",
-// "depth", "normal", "contact", "feature", "time_s"} (+ "contacts" for the
-// backends: how many feature contacts the report's detector found)}.
+// "depth", "normal", "contact", "feature", "time_s"} (+ "contacts" for our
+// methods: how many feature contacts the report's detector or the manifold
+// found)}. The manifold methods are timed as the simulation meets a pair for
+// the first time: both bodies' geometry built (in storage kept from query to
+// query, as the simulation keeps it), no axis remembered from before.
 nlohmann::json collide(const std::vector<collision::CollisionCase>& cases, const CollideOptions& options);
 
 // The agreement and timing table (markdown) over collide()'s entries: per

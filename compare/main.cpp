@@ -367,7 +367,7 @@ int collide_files(const std::vector<std::string>& files, const compare::CollideO
   int failed = 0;
   for (const auto& e : entries)
     for (const auto& m : e["disagree"])
-      if (m == "traditional" || m == "cga") {
+      if (compare::our_method(m)) {
         std::cerr << "gacompare: collide: " << e["name"].get<std::string>() << ": " << m.get<std::string>()
                   << " disagrees with the separating-axis reference\n";
         ++failed;

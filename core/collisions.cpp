@@ -33,6 +33,8 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["island_bodies_stepped_alone"] = local_island_bodies;
   out["island_steps"] = local_steps;
   out["largest_island"] = largest_island;
+  out["narrowphase_shapes"] = narrowphase_shapes;
+  out["narrowphase_axes_kept"] = narrowphase_axes_kept;
 }
 
 CollisionSetup collision_setup(const Scene& scene) {

@@ -52,6 +52,7 @@
 #include "core/collision.hpp"
 #include "core/error.hpp"
 #include "core/narrowphase.hpp"
+#include "core/pair_memory.hpp"
 #include "core/rigid_body.hpp"
 #include "core/scene.hpp"
 #include "core/stage.hpp"
@@ -99,6 +100,7 @@ struct CollisionCounters {
   // too long for them), the bodies those held (each re-integrated from the
   // step's start) and the largest island seen.
   std::uint64_t islands = 0, local_islands = 0, local_island_bodies = 0, largest_island = 0, local_steps = 0;
+  std::uint64_t narrowphase_shapes = 0, narrowphase_axes_kept = 0;  // bodies' geometry built; pairs their last axis decided
   void add_to(std::map<std::string, std::uint64_t>& out) const;
 };
 
@@ -242,13 +244,28 @@ struct Collider {
     ScopedStage timed(profile, Stage::narrowphase);
     const auto method = setup.settings.method == ContactMethod::report ? collision::Method::sat_then_report
                                                                        : collision::Method::sat_then_manifold;
+    ++detection_;
+    if (world.data() == setup.everyone.data()) hints_.next();  // the world's detection: a new round of pairs
     for (auto [i, j] : pairs) {
       if (setup.is_static[world[i]] && setup.is_static[world[j]]) continue;
       if (world[i] > world[j]) std::swap(i, j);  // a < b in the world: every group sees a pair the same way
       ++counters.narrowphase_pairs;
       PairHit h{i, j, {}, {}};
-      h.sat = collision::narrowphase<NarrowBody>(placed(pose, world, i), placed(pose, world, j), method, &h.features);
-      if (!h.sat.intersect) continue;
+      if (setup.settings.reuse) {
+        const int a = world[i], b = world[j];
+        const Shape& sa = shape(a, [&] { return pose[i]; });
+        const Shape& sb = shape(b, [&] { return pose[j]; });
+        collision::SatHint& hint = hints_.at(a, b);
+        h.sat = collision::narrowphase<NarrowBody>(sa, sb, method, &h.features, &hint);
+        counters.narrowphase_axes_kept += hint.kept;
+      } else {
+        h.sat = collision::narrowphase<NarrowBody>(placed(pose, world, i), placed(pose, world, j), method, &h.features);
+        counters.narrowphase_shapes += 2;
+      }
+      // A pair within the touching band is in contact too (it has contacts):
+      // its yes/no is rounding's (core/collision.hpp), and a box resting
+      // exactly on another fell for a step whenever it rounded to apart.
+      if (!h.sat.intersect && h.features.empty()) continue;
       d.max_depth = std::max(d.max_depth, h.sat.depth);
       d.hits.push_back(std::move(h));
     }
@@ -280,12 +297,20 @@ struct Collider {
   double depth_at(World world, const std::vector<std::pair<int, int>>& pairs, PoseOf&& pose_of, Profile& profile) const {
     ScopedStage timed(profile, Stage::narrowphase);
     double g = -INFINITY;
-    for (const auto& [i, j] : pairs)
-    {  // few pairs, each body in one or two: their poses only
-      const collision::Placed a{setup.meshes[world[i]].get(), pose_of(i)};
-      const collision::Placed b{setup.meshes[world[j]].get(), pose_of(j)};
-      const Vec3 o = collision::local_origin(a, b);
-      g = std::max(g, collision::separating_axis(NarrowBody(a, o), NarrowBody(b, o)).depth);
+    ++detection_;
+    Shape own_a, own_b;  // without reuse: each pair's own
+    for (const auto& [i, j] : pairs) {  // few pairs, each body in one or two: their poses only
+      const bool reuse = setup.settings.reuse;
+      const int wa = world[i], wb = world[j];
+      if (!reuse) {
+        own_a.reset(), own_b.reset();
+        own_a.place({setup.meshes[wa].get(), pose_of(i)}), own_b.place({setup.meshes[wb].get(), pose_of(j)});
+      }
+      const Shape& a = reuse ? shape(wa, [&] { return pose_of(i); }) : own_a;
+      const Shape& b = reuse ? shape(wb, [&] { return pose_of(j); }) : own_b;
+      const Vec3 o = collision::local_origin(a.position(), b.position());
+      g = std::max(g, collision::separating_axis(NarrowBody(a, a.position() - o), NarrowBody(b, b.position() - o)).depth);
+      counters.narrowphase_shapes += reuse ? 0 : 2;
     }
     return g;
   }
@@ -385,6 +410,25 @@ struct Collider {
  private:
   using Motion = typename Bodies::Motion;
   using Motions = std::vector<Motion>;
+  using Shape = typename NarrowBody::Shape;
+
+  // The narrowphase's geometry of each body (issue #14): placed once per
+  // detection (or per time-of-impact trial) on its first pair, then read by
+  // every pair it is in; pose() is only asked for bodies some pair needs.
+  mutable std::vector<Shape> shapes_;
+  mutable std::vector<std::uint64_t> placed_in_;
+  mutable std::uint64_t detection_ = 0;
+  mutable collision::PairMemory<collision::SatHint> hints_;  // each pair's last axis
+  template <class PoseOf>
+  const Shape& shape(int b, PoseOf&& pose_of) const {
+    if (shapes_.size() != setup.meshes.size()) shapes_.resize(setup.meshes.size()), placed_in_.assign(setup.meshes.size(), 0);
+    if (placed_in_[b] != detection_) {
+      shapes_[b].place({setup.meshes[b].get(), pose_of()});
+      placed_in_[b] = detection_;
+      ++counters.narrowphase_shapes;
+    }
+    return shapes_[b];
+  }
   struct Row {
     int a, b;
     std::size_t sa, sb;    // the bodies' slots in the response's Motions

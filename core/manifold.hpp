@@ -117,8 +117,9 @@ void face_contacts(const Body& r, const Body& i, int k, bool r_is_a, double band
     poly.swap(next);
   }
   const std::size_t first = out.size();
+  const auto reference = r.face_plane(k);
   for (const Point& p : poly) {
-    const double s = Body::distance(r.face_plane(k), p);
+    const double s = Body::distance(reference, p);
     if (s > band) continue;
     const Vec3 x = Body::position(p) - (0.5 * s) * n;
     bool duplicate = false;  // clipping can return a corner twice (an incident vertex on a side plane)

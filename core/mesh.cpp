@@ -191,6 +191,22 @@ Mesh Mesh::from_triangles(std::string name, std::vector<Vec3> vertices, std::vec
     } while (v >= 0 && v != loop.front() && loop.size() <= next[p].size());
     if (v != loop.front() || loop.size() != next[p].size()) loop.clear();  // not one closed loop
   }
+  // The edge graph, in compressed rows: vertex v's entries are
+  // [neighbour_start_[v], neighbour_start_[v + 1]).
+  m.neighbour_start_.assign(vertices.size() + 1, 0);
+  for (const auto& [a, b] : m.edges_) ++m.neighbour_start_[a + 1], ++m.neighbour_start_[b + 1];
+  for (std::size_t v = 0; v < vertices.size(); ++v) m.neighbour_start_[v + 1] += m.neighbour_start_[v];
+  m.neighbours_.resize(2 * m.edges_.size());
+  m.vertex_edges_.resize(2 * m.edges_.size());
+  std::vector<int> fill(m.neighbour_start_.begin(), m.neighbour_start_.end() - 1);
+  for (int e = 0; e < static_cast<int>(m.edges_.size()); ++e)
+    for (int end = 0; end < 2; ++end) {
+      const int v = m.edges_[e][end], k = fill[v]++;
+      m.neighbours_[k] = m.edges_[e][1 - end];
+      m.vertex_edges_[k] = e;
+    }
+  m.corners_only_ = true;
+  for (std::size_t v = 0; v < vertices.size(); ++v) m.corners_only_ &= m.neighbour_start_[v + 1] - m.neighbour_start_[v] >= 3;
   m.vertices_ = std::move(vertices);
   m.triangles_ = std::move(triangles);
   return m;

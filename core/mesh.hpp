@@ -16,6 +16,7 @@
 
 #include <array>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,20 @@ class Mesh {
   // whose boundary is not one loop (a non-convex mesh's face with a hole) gets
   // an empty loop, and such meshes never reach the convex narrowphase.
   const std::vector<std::vector<int>>& faces() const { return faces_; }
+  // The solid's edge graph (issue #14): per vertex, the feature edges that meet
+  // there (indices into edges()) and the vertices at their other ends, in the
+  // same order. Hill climbing to a support point walks it (core/shape.hpp).
+  std::span<const int> neighbours(int v) const {
+    return {neighbours_.data() + neighbour_start_[v], neighbours_.data() + neighbour_start_[v + 1]};
+  }
+  std::span<const int> vertex_edges(int v) const {
+    return {vertex_edges_.data() + neighbour_start_[v], vertex_edges_.data() + neighbour_start_[v + 1]};
+  }
+  // Whether every vertex is a corner of the solid (three or more feature edges
+  // meet there). Then a vertex no neighbour is lower than along a direction is
+  // the lowest of all (the simplex method's rule, for a convex body); a vertex
+  // inside a flat face or on a straight edge has no such guarantee.
+  bool corners_only() const { return corners_only_; }
   double size() const { return size_; }  // bounding-box diagonal: the length scale of tolerances
 
   // The same solid moved rigidly: x -> R x + t (R a rotation).
@@ -78,6 +93,8 @@ class Mesh {
   std::vector<std::array<int, 2>> edges_, edge_planes_;
   std::vector<std::array<int, 3>> triangle_edges_;
   std::vector<std::vector<int>> faces_;
+  std::vector<int> neighbour_start_, neighbours_, vertex_edges_;
+  bool corners_only_ = false;
   double size_ = 0;
 };
 

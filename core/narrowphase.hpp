@@ -43,40 +43,22 @@ namespace gacompare::collision {
 
 enum class Method : std::uint8_t { report, sat, sat_then_report, manifold, sat_then_manifold };
 
-// A body's triangles prepared for segment tests (each backend's
-// PreparedTriangle in segment_triangle.hpp), built on the first test: a body
-// tests each of its triangles against many edges.
-template <class Prepared>
-class PreparedTriangles {
- public:
-  template <class Body>
-  const Prepared& at(const Body& body, int k) const {
-    if (triangles_.empty()) {
-      triangles_.reserve(body.mesh().triangles().size());
-      for (const auto& [a, b, c] : body.mesh().triangles())
-        triangles_.emplace_back(body.vertex(a), body.vertex(b), body.vertex(c));
-    }
-    return triangles_[k];
-  }
-
- private:
-  mutable std::vector<Prepared> triangles_;
-};
-
 namespace detail {
 
 // §2.4.3: the face of `f` the vertex j of `o` is least deep behind, and how far
-// (the largest signed distance: < 0 inside, −depth).
+// (the largest signed distance: < 0 inside, −depth). The vertex is moved into
+// f's own frame once, then tested against each of f's planes there.
 template <class Body>
 std::pair<double, int> least_deep_face(const Body& f, const Body& o, int j) {
   const int planes = static_cast<int>(f.mesh().planes().size());
-  double best = f.plane_distance(0, o, j);
+  const auto x = f.point_from(o, j);
+  double best = Body::distance(f.shape().plane(0), x);
   int arg = 0;
   for (int k = 1; k < planes; ++k) {
-    const double s = f.plane_distance(k, o, j);
+    const double s = Body::distance(f.shape().plane(k), x);
     if (s > best) best = s, arg = k;
   }
-  return {best, arg};
+  return {best * f.shape().unit(), arg};
 }
 
 // §2.4.3 for every vertex of `o` against `f`, once: each is needed by the
@@ -131,16 +113,19 @@ void edges_through_faces(const Body& a, const Body& b, const Body& s, const Body
   const auto& tedge_planes = t.mesh().edge_planes();
   for (int i = 0; i < static_cast<int>(se.size()); ++i) {
     if (s_depth[se[i][0]].first <= 0 || s_depth[se[i][1]].first <= 0) continue;
+    // The edge's ends in t's own frame and unit, where t's triangles are prepared.
+    const auto l0 = t.point_from(s, se[i][0]), l1 = t.point_from(s, se[i][1]);
     for (int k = 0; k < static_cast<int>(tris.size()); ++k) {
-      const auto hit = t.segment_through(k, s, se[i][0], se[i][1]);
+      const auto hit = t.shape().triangle(k).through(l0, l1);
       if (!hit) continue;
+      const Vec3 point = hit->point * t.shape().unit();  // about t's position, in metres
       // The nearest feature edge of the face (polygon) this triangle belongs to.
       int j = -1;
       double nearest = 0;
       for (int e = 0; e < static_cast<int>(te.size()); ++e) {
         if (tedge_planes[e][0] != tplane[k] && tedge_planes[e][1] != tplane[k]) continue;
-        const Vec3 p = t.vertex(te[e][0]), d = t.vertex(te[e][1]) - p;
-        const double dist2 = (hit->point - p).cross(d).squaredNorm() / d.squaredNorm();
+        const Vec3 p = t.shape().vertex(te[e][0]), d = t.shape().vertex(te[e][1]) - p;
+        const double dist2 = (point - p).cross(d).squaredNorm() / d.squaredNorm();
         if (j < 0 || dist2 < nearest) nearest = dist2, j = e;
       }
       if (j < 0) continue;
@@ -171,20 +156,30 @@ void report_contacts(const Body& a, const Body& b, std::vector<FeatureContact>& 
   detail::edges_through_faces(a, b, b, a, b_in_a, false, seen, out);
 }
 
-// The whole narrowphase for two placed bodies; points come back in world
+// The whole narrowphase for two bodies at their shapes' poses (core/shape.hpp:
+// each body's geometry built once per detection); points come back in world
 // coordinates. `contacts` (optional) receives the feature contacts of the
-// report method.
+// method; `hint` (optional) the pair's axis from its last detection, tried
+// first by the methods that stop at a separating axis, and the axis of this
+// answer afterwards (core/separating_axis.hpp).
 template <class Body>
-PairContact narrowphase(const Placed& a, const Placed& b, Method method, std::vector<FeatureContact>* contacts = nullptr) {
-  const Vec3 origin = local_origin(a, b);
-  const Body A(a, origin), B(b, origin);
-  const double band = kTouchingBand * pair_scale(*a.mesh, *b.mesh);
+PairContact narrowphase(const typename Body::Shape& sa, const typename Body::Shape& sb, Method method,
+                        std::vector<FeatureContact>* contacts = nullptr, SatHint* hint = nullptr) {
+  const Vec3 origin = local_origin(sa.position(), sb.position());
+  const Body A(sa, sa.position() - origin), B(sb, sb.position() - origin);
+  const double band = kTouchingBand * pair_scale(sa.mesh(), sb.mesh());
   if (method == Method::manifold || method == Method::sat_then_manifold) {
     SatAxes axes;
-    PairContact result = separating_axis(A, B, method == Method::sat_then_manifold, &axes);
+    const bool early = method == Method::sat_then_manifold;
+    PairContact result = separating_axis(A, B, early, &axes, hint);
     if (result.depth >= -band) {
       // Within the band: an early exit (at a gap > 0) left the axes incomplete.
-      if (result.depth < 0 && method == Method::sat_then_manifold) result = separating_axis(A, B, false, &(axes = {}));
+      if (result.depth < 0 && early) result = separating_axis(A, B, false, &(axes = {}), hint);
+    }
+    // Contacts for a pair overlapping or touching (the whole test's gap within
+    // the band), never for one apart: whether the test stopped early, and at
+    // which axis, then cannot change what a pair reports.
+    if (result.depth >= -band) {
       std::vector<FeatureContact> local;
       std::vector<FeatureContact>& found = contacts ? *contacts : local;
       const std::size_t first = found.size();
@@ -194,7 +189,7 @@ PairContact narrowphase(const Placed& a, const Placed& b, Method method, std::ve
     result.contact += origin;
     return result;
   }
-  PairContact result = separating_axis(A, B, method != Method::report);
+  PairContact result = separating_axis(A, B, method != Method::report, nullptr, hint);
   result.contact += origin;
   if (method == Method::sat_then_report && result.depth < -band) return result;
   if (method != Method::sat) {
@@ -206,6 +201,13 @@ PairContact narrowphase(const Placed& a, const Placed& b, Method method, std::ve
     result.intersect = found.size() > first;
   }
   return result;
+}
+
+// The same for two placed bodies, their geometry built for this pair alone.
+template <class Body>
+PairContact narrowphase(const Placed& a, const Placed& b, Method method, std::vector<FeatureContact>* contacts = nullptr) {
+  const typename Body::Shape sa(a), sb(b);
+  return narrowphase<Body>(sa, sb, method, contacts);
 }
 
 }  // namespace gacompare::collision

@@ -518,8 +518,9 @@ class Loader {
       });
       return a;
     }
-    static constexpr Keys<8> keys = {"type",           "restitution",   "penetration_tolerance", "step",
-                                     "time_of_impact", "impact_motion", "method",                "broadphase"};
+    static constexpr Keys<9> keys = {"type",           "restitution",   "penetration_tolerance", "step",
+                                     "time_of_impact", "impact_motion", "method",                "broadphase",
+                                     "reuse"};
     Obj o(v, keys);
     Collisions c;
     if (auto x = o.opt("method")) {
@@ -552,6 +553,7 @@ class Loader {
     }
     if (auto x = o.opt("restitution")) c.restitution = number(*x, Range::unit);
     if (auto x = o.opt("penetration_tolerance")) c.penetration_tolerance = number(*x, Range::positive);
+    if (auto x = o.opt("reuse")) c.reuse = boolean(*x);
     return c;
   }
 

@@ -84,6 +84,11 @@ struct Collisions {
   ImpactMotion impact_motion = ImpactMotion::integrate;
   ContactMethod method = ContactMethod::manifold;
   BroadphaseMethod broadphase = BroadphaseMethod::aabb_tree;  // the fastest, measured: README
+  // Each body's narrowphase geometry built once per detection and each pair's
+  // separating axis kept between detections (issue #14); false rebuilds both
+  // bodies for every pair and remembers nothing: the same run, slower (for
+  // tests and benchmarks).
+  bool reuse = true;
 };
 // Forces applied at points of bodies (§2.3.1: L̇ = τ): each pushes body `body` at
 // `point` (body coordinates, from the centre of mass) with `force` (world, N)

@@ -23,6 +23,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace gacompare::testing {
@@ -91,6 +92,47 @@ TYPED_TEST_SUITE_P(ContactBundled);
 TYPED_TEST_P(ContactBundled, SlideMeetsItsOutcome) { check_bundled<TypeParam>("contact_slide"); }
 TYPED_TEST_P(ContactBundled, RowMeetsItsOutcome) { check_bundled<TypeParam>("contact_row"); }
 TYPED_TEST_P(ContactBundled, Stack5MeetsItsOutcome) { check_bundled<TypeParam>("contact_stack5"); }
-REGISTER_TYPED_TEST_SUITE_P(ContactBundled, SlideMeetsItsOutcome, RowMeetsItsOutcome, Stack5MeetsItsOutcome);
+// Issue #14: each body's narrowphase geometry shared by its pairs and each
+// pair's separating axis remembered (the collisions effect's `reuse`, on by
+// default) change no run: the family's cases that are not long, and the
+// bundled collision scenes (the 27-body box for its first second), run again
+// with reuse off give the same samples bit for bit and the same counters,
+// but for the two that count what reuse saves.
+TYPED_TEST_P(ContactBundled, ReuseChangesNoRun) {
+  std::vector<core::Scene> scenes;
+  std::uint64_t kept = 0;
+  for (const auto& c : core::contact_family())
+    if (!c.long_running) scenes.push_back(c.scene);
+  for (const char* name : {"bodies_in_box", "cube_drop_corner", "cube_drop_edge", "cube_pyramid_point", "box_edge_edge"}) {
+    scenes.push_back(core::load_scene(std::filesystem::path(GACOMPARE_DATA_DIR) / "scenes" / (std::string(name) + ".json")));
+    scenes.back().duration = std::min(scenes.back().duration, 1.0);
+  }
+  for (const auto& scene : scenes) {
+    core::Scene rebuilt = scene;
+    for (auto& e : rebuilt.effects)
+      if (auto* c = std::get_if<core::Collisions>(&e)) c->reuse = false;
+    const core::Run a = core::simulate<TypeParam>(scene), b = core::simulate<TypeParam>(rebuilt);
+    ASSERT_FALSE(a.error) << scene.name << ": " << *a.error;
+    ASSERT_FALSE(b.error) << scene.name << ": " << *b.error;
+    ASSERT_EQ(a.samples.size(), b.samples.size()) << scene.name;
+    for (std::size_t k = 0; k < a.samples.size(); ++k)
+      for (std::size_t i = 0; i < a.samples[k].bodies.size(); ++i) {
+        const auto &x = a.samples[k].bodies[i], &y = b.samples[k].bodies[i];
+        ASSERT_TRUE(x.position == y.position && x.orientation == y.orientation && x.velocity == y.velocity &&
+                    x.angular_velocity == y.angular_velocity)
+            << scene.name << ": body " << i << " at t = " << a.samples[k].t;
+      }
+    auto ca = a.counters, cb = b.counters;
+    for (const char* saved : {"narrowphase_shapes", "narrowphase_axes_kept"}) ca.erase(saved), cb.erase(saved);
+    EXPECT_EQ(ca, cb) << scene.name;
+    EXPECT_EQ(b.counters.at("narrowphase_axes_kept"), 0u) << scene.name;  // reuse off: nothing remembered
+    EXPECT_LE(a.counters.at("narrowphase_shapes"), b.counters.at("narrowphase_shapes")) << scene.name;
+    kept += a.counters.at("narrowphase_axes_kept");
+  }
+  EXPECT_GT(kept, 1000u);  // the remembered axes did decide pairs: the test compared something
+}
+
+REGISTER_TYPED_TEST_SUITE_P(ContactBundled, SlideMeetsItsOutcome, RowMeetsItsOutcome, Stack5MeetsItsOutcome,
+                            ReuseChangesNoRun);
 
 }  // namespace gacompare::testing

@@ -3,10 +3,12 @@
 #include "cga/geometry/meet.hpp"
 #include "cga/segment_triangle.hpp"
 
+#include "../narrowphase_cache_cases.hpp"
 #include "../narrowphase_cases.hpp"
 
 namespace {
 struct Cga {
+  using Body = gacompare::cga::Body;
   static auto segment_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                                const Eigen::Vector3d& d, const Eigen::Vector3d& e) {
     return gacompare::cga::segment_triangle(a, b, c, d, e);
@@ -20,6 +22,7 @@ struct Cga {
 
 namespace gacompare::testing {
 INSTANTIATE_TYPED_TEST_SUITE_P(Cga, NarrowphaseCases, Cga);
+INSTANTIATE_TYPED_TEST_SUITE_P(Cga, NarrowphaseCacheCases, Cga);
 }
 
 // The manifold's line–plane crossing in cga (Body::cut, the meet written out

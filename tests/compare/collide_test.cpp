@@ -21,7 +21,7 @@ TEST(Collide, EveryPairGetsEveryMethodsAnswer) {
   const json entries = read_json(out);
   ASSERT_EQ(entries.size(), 40u);
   for (const auto& e : entries) {
-    for (const char* m : {"traditional", "cga", "sat", "fcl", "bullet"}) {
+    for (const char* m : {"traditional", "cga", "traditional_manifold", "cga_manifold", "sat", "fcl", "bullet"}) {
       ASSERT_TRUE(e.contains(m)) << e["name"] << " " << m;
       if (e[m].contains("error")) continue;  // a referee that gave no valid answer says so
       for (const char* k : {"intersect", "depth", "normal", "contact", "time_s"}) EXPECT_TRUE(e[m].contains(k)) << m << k;
@@ -34,11 +34,20 @@ TEST(Collide, EveryPairGetsEveryMethodsAnswer) {
     if (!e["touching"].get<bool>()) {
       EXPECT_EQ(e["traditional"]["intersect"], e["sat"]["intersect"]) << e["name"];
       EXPECT_EQ(e["cga"]["intersect"], e["sat"]["intersect"]) << e["name"];
+      EXPECT_EQ(e["traditional_manifold"]["intersect"], e["sat"]["intersect"]) << e["name"];
+      EXPECT_EQ(e["cga_manifold"]["intersect"], e["sat"]["intersect"]) << e["name"];
+    }
+    // The manifold's contacts: some exactly where the pair intersects (our yes/no agrees with the reference).
+    if (!e["touching"].get<bool>()) {
+      for (const char* m : {"traditional_manifold", "cga_manifold"})
+        EXPECT_EQ(e[m]["contacts"].get<int>() > 0, e["sat"]["intersect"].get<bool>()) << e["name"] << " " << m;
     }
   }
   std::ifstream in(table);
   const std::string text((std::istreambuf_iterator<char>(in)), {});
   EXPECT_NE(text.find("| traditional | 30 | 0 | 30 (100%)"), std::string::npos) << text;
+  EXPECT_NE(text.find("| traditional_manifold | 30 | 0 | 30 (100%)"), std::string::npos) << text;
+  EXPECT_NE(text.find("| cga_manifold | 30 | 0 | 30 (100%)"), std::string::npos) << text;
   // Bullet gives no answer on the 1e-3 scale cubes: each such pair is a case file that replays.
   ASSERT_TRUE(fs::is_directory(dis));
   int files = 0;

@@ -92,6 +92,52 @@ TEST(Mesh, FaceLoopsAreCounterClockwisePolygonsOfTheirPlanes) {
   }
 }
 
+// The edge graph (issue #14, hill climbing walks it): each of a box's corners
+// meets three feature edges, to the corners that differ from it in one
+// coordinate (make_box numbers corner i by the bits x, y, z), each listed with
+// the edge that joins them; every built-in shape and a hull has corners only,
+// with each feature edge listed at both its ends. A box whose top face has a
+// vertex in its middle (as an OBJ file may) is not corners only: that vertex
+// meets no feature edge at all.
+TEST(Mesh, EdgeGraphJoinsTheCornersOfTheSolid) {
+  const Mesh box = make_box({1, 2, 3});
+  ASSERT_TRUE(box.corners_only());
+  for (int v = 0; v < 8; ++v) {
+    const auto next = box.neighbours(v);
+    const auto edges = box.vertex_edges(v);
+    ASSERT_EQ(next.size(), 3u);
+    ASSERT_EQ(edges.size(), 3u);
+    std::set<int> bits;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto [e0, e1] = box.edges()[edges[k]];
+      EXPECT_TRUE((e0 == v && e1 == next[k]) || (e1 == v && e0 == next[k])) << v;
+      bits.insert(v ^ next[k]);
+    }
+    EXPECT_EQ(bits, (std::set<int>{1, 2, 4})) << v;
+  }
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> g;
+  std::vector<Vec3> points;
+  for (int i = 0; i < 50; ++i) points.emplace_back(g(rng), g(rng), g(rng));
+  for (const Mesh& m : {make_tetrahedron(1), make_pyramid(1, 2), make_octahedron(1), make_icosahedron(1),
+                        convex_hull(points)}) {
+    EXPECT_TRUE(m.corners_only()) << m.name();
+    std::size_t ends = 0;
+    for (int v = 0; v < static_cast<int>(m.vertices().size()); ++v) ends += m.neighbours(v).size();
+    EXPECT_EQ(ends, 2 * m.edges().size()) << m.name();
+  }
+  std::vector<Vec3> v = box.vertices();
+  v.emplace_back(0, 0, 1.5);  // the middle of the top face (z = +1.5: corners 4 to 7)
+  std::vector<Triangle> t;
+  for (const auto& tri : box.triangles())
+    if (!((tri[0] & 4) && (tri[1] & 4) && (tri[2] & 4))) t.push_back(tri);
+  for (const Triangle& fan : {Triangle{8, 4, 5}, Triangle{8, 5, 7}, Triangle{8, 7, 6}, Triangle{8, 6, 4}}) t.push_back(fan);
+  const Mesh dented = Mesh::from_triangles("box with a vertex in a face", v, t);
+  EXPECT_EQ(dented.edges().size(), 12u);
+  EXPECT_TRUE(dented.neighbours(8).empty());
+  EXPECT_FALSE(dented.corners_only());
+}
+
 TEST(Mesh, BuiltInShapesHaveTheirSizes) {
   // Independent of the builders: distances measured on the vertices.
   const Mesh box = make_box({1, 2, 3});

@@ -186,6 +186,7 @@ TEST(SceneLoad, OptionalKeysTakeTheirDefaults) {
   EXPECT_EQ(s.find_effect<Gravity>()->g, Vec3(0, 0, -9.81));
   EXPECT_EQ(s.find_effect<Collisions>()->restitution, Collisions{}.restitution);
   EXPECT_EQ(s.find_effect<Collisions>()->broadphase, Collisions{}.broadphase);
+  EXPECT_TRUE(s.find_effect<Collisions>()->reuse);
   EXPECT_TRUE(s.particles.empty());
   EXPECT_TRUE(s.constraints.empty());
   EXPECT_EQ(s.bodies[0].velocity, Vec3::Zero());
@@ -391,6 +392,7 @@ std::vector<BadCase> bad_cases() {
       {"ZeroPenetrationTolerance",
        set("/effects/1/penetration_tolerance", 0),
        {": /effects/1/penetration_tolerance: expected a number > 0, got 0"}},
+      {"ReuseNotBool", set("/effects/1/reuse", "no"), {": /effects/1/reuse: expected true or false, got \"no\""}},
       {"DragWithoutK",
        set("/effects/2", json{{"type", "linear_drag"}}),
        {": /effects/2/k: expected a number >= 0, got nothing"}},

@@ -2,10 +2,12 @@
 #include "traditional/narrowphase.hpp"
 #include "traditional/segment_triangle.hpp"
 
+#include "../narrowphase_cache_cases.hpp"
 #include "../narrowphase_cases.hpp"
 
 namespace {
 struct Traditional {
+  using Body = gacompare::traditional::Body;
   static auto segment_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                                const Eigen::Vector3d& d, const Eigen::Vector3d& e) {
     return gacompare::traditional::segment_triangle(a, b, c, d, e);
@@ -19,4 +21,5 @@ struct Traditional {
 
 namespace gacompare::testing {
 INSTANTIATE_TYPED_TEST_SUITE_P(Traditional, NarrowphaseCases, Traditional);
+INSTANTIATE_TYPED_TEST_SUITE_P(Traditional, NarrowphaseCacheCases, Traditional);
 }

@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""What the narrowphase's reuse saves in a whole run (issue #14 item 3): the
+scale scenes (bench/scale/box_scene.py) with the collisions effect's `reuse` on
+(each body's narrowphase geometry built once per detection, each pair's
+separating axis remembered) and off (both bodies rebuilt for every pair,
+nothing remembered: the same run, tested), through traditional and cga.
+
+  bench/scale/reuse.py --binary build/release/compare/gacompare --sizes 125,1000 --repeat 3
+
+Each size and setting is one `gacompare compare` of the two backends (their
+order alternating in each repeat); the settings alternate too (on, off, on,
+off, ...), one repeat each, so that a slow spell of the shared machine falls
+on both. The table quotes medians over the repeats (min-max) of the
+narrowphase stage's seconds and the whole run's, per simulated second, and
+the counters that say why (pairs, shapes built, pairs their remembered axis
+decided).
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import box_scene  # noqa: E402
+
+
+def run(args, scene, folder):
+    path = folder + ".json"
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    cmd = [args.binary, "compare", path, "--backends", "traditional,cga", "--repeat", "1", "--out", folder]
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    results = json.load(open(os.path.join(folder, "results.json")))
+    out = {}
+    for r in results["runs"]:
+        out[r["backend"]] = {"wall": r["wall_seconds"]["median"] / args.duration,
+                             "narrowphase": r["stages"]["narrowphase"]["seconds"] / args.duration,
+                             "counters": r["counters"]}
+    return out
+
+
+def cell(xs):
+    return f"{statistics.median(xs):.3g} ({min(xs):.3g}–{max(xs):.3g})"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--binary", default="build/release/compare/gacompare")
+    ap.add_argument("--sizes", default="125,1000")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--duration", type=float, default=0.2)
+    ap.add_argument("--seed", type=int, default=1)
+    args = ap.parse_args()
+    sizes = [int(s) for s in args.sizes.split(",")]
+    tmp = tempfile.mkdtemp(prefix="reuse-")
+    print(f"Command: `bench/scale/reuse.py --sizes {args.sizes} --repeat {args.repeat} --duration {args.duration} "
+          f"--seed {args.seed}` (seconds per simulated second, median (min–max) of {args.repeat}; counters of one run)\n")
+    print("| N | backend | reuse | narrowphase s | whole run s | narrowphase pairs | shapes built | axes kept |")
+    print("|---:|---|---|---:|---:|---:|---:|---:|")
+    for n in sizes:
+        data = {}
+        for rep in range(args.repeat):
+            for reuse in (True, False) if rep % 2 == 0 else (False, True):
+                scene = box_scene.scene(n, args.seed, args.duration, args.duration / 4)
+                for e in scene["effects"]:
+                    if e["type"] == "collisions":
+                        e["reuse"] = reuse
+                got = run(args, scene, os.path.join(tmp, f"box_{n}_{reuse}_{rep}"))
+                for backend, r in got.items():
+                    data.setdefault((backend, reuse), []).append(r)
+        for backend in ("traditional", "cga"):
+            for reuse in (True, False):
+                rs = data[(backend, reuse)]
+                c = rs[0]["counters"]
+                print(f"| {n} | {backend} | {'on' if reuse else 'off'} | {cell([r['narrowphase'] for r in rs])} | "
+                      f"{cell([r['wall'] for r in rs])} | {c.get('narrowphase_pairs', 0)} | "
+                      f"{c.get('narrowphase_shapes', 0)} | {c.get('narrowphase_axes_kept', 0)} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
