@@ -72,6 +72,24 @@ inline int axis_of_largest_spread(std::span<const Vec3> centres) {
   return axis;
 }
 
+// Pairs (i, j) of n bodies into ascending order, by two stable counting
+// sorts (on j, then on i): O(n + k) for k pairs, where a comparison sort took
+// a third of the broadphase's time on the islands' sweeps (thousands of pairs
+// per sub-step of a pile of bodies).
+inline void sort_pairs(std::vector<std::pair<int, int>>& pairs, std::size_t n) {
+  if (pairs.size() < 64) return std::sort(pairs.begin(), pairs.end());
+  std::vector<std::pair<int, int>> tmp(pairs.size());
+  std::vector<std::size_t> start(n + 1);
+  const auto pass = [&](auto key, const std::vector<std::pair<int, int>>& from, std::vector<std::pair<int, int>>& to) {
+    std::fill(start.begin(), start.end(), 0);
+    for (const auto& p : from) ++start[static_cast<std::size_t>(key(p)) + 1];
+    for (std::size_t k = 1; k <= n; ++k) start[k] += start[k - 1];
+    for (const auto& p : from) to[start[static_cast<std::size_t>(key(p))]++] = p;
+  };
+  pass([](const std::pair<int, int>& p) { return p.second; }, pairs, tmp);
+  pass([](const std::pair<int, int>& p) { return p.first; }, tmp, pairs);
+}
+
 template <BoundingSphereOps Ops>
 BroadphaseResult sort_and_sweep(std::span<const typename Ops::Sphere> spheres) {
   const std::size_t n = spheres.size();
@@ -107,7 +125,7 @@ BroadphaseResult sort_and_sweep(std::span<const typename Ops::Sphere> spheres) {
         out.pairs.emplace_back(std::min(i, j), std::max(i, j));
     }
   }
-  std::sort(out.pairs.begin(), out.pairs.end());
+  sort_pairs(out.pairs, n);
   out.counters.pairs = static_cast<std::int64_t>(out.pairs.size());
   return out;
 }

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -341,6 +342,25 @@ TEST(Aabb, CornersAndSixComparisons) {
   EXPECT_FALSE(overlap(box, Aabb{}));
   EXPECT_FALSE(overlap(Aabb{}, Aabb{}));
   EXPECT_FALSE(overlap(aabb_of(std::vector<Vec3>{}), box));
+}
+
+// The counting sort of pairs gives std::sort's order, repeats included, on
+// seeded lists below and above its small-list cut-off.
+TEST(SortPairs, MatchesTheComparisonSort) {
+  std::mt19937_64 rng(14);
+  for (const std::size_t n : {1u, 2u, 7u, 100u, 3000u})
+    for (const std::size_t k : {0u, 5u, 63u, 64u, 1000u, 20000u}) {
+      if (n < 2 && k > 0) continue;
+      std::vector<std::pair<int, int>> pairs;
+      for (std::size_t e = 0; e < k; ++e) {
+        const int i = static_cast<int>(rng() % (n - 1));
+        pairs.emplace_back(i, i + 1 + static_cast<int>(rng() % (n - 1 - static_cast<std::size_t>(i))));
+      }
+      auto expected = pairs;
+      std::sort(expected.begin(), expected.end());
+      sort_pairs(pairs, n);
+      EXPECT_EQ(pairs, expected) << n << " bodies, " << k << " pairs";
+    }
 }
 
 }  // namespace
