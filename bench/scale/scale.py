@@ -44,10 +44,11 @@ def run_size(args, n):
     with open(path, "w") as f:
         json.dump(scene, f, indent=1)
     folder = os.path.join(args.out, f"box_{n}")
-    cmd = [args.binary, "compare", path, "--backends", *args.backends.split(","), "--repeat", str(args.repeat),
-           "--out", folder]
+    cmd = [args.binary, "compare", path, "--backends", args.backends, "--repeat", str(args.repeat), "--out", folder]
     print(f"scale: N = {n}: {' '.join(cmd)}", file=sys.stderr, flush=True)
     done = subprocess.run(cmd, stdout=subprocess.PIPE, text=True)
+    if not os.path.exists(os.path.join(folder, "results.json")):
+        raise SystemExit(f"scale: N = {n}: gacompare exited {done.returncode} and wrote no results")
     results = json.load(open(os.path.join(folder, "results.json")))
     rows = {}
     for run in results["runs"]:
