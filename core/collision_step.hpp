@@ -32,9 +32,14 @@
 // applied forces act on each body alone, and particles never touch bodies),
 // so an island's motion is independent of every other body's within the step.
 // What it cannot see: an island's bodies leaving the reach they had at t0 (an
-// impulse can make a body faster than it was) and meeting a body of another
-// island before t1; that pair is found at t1, deeper than the tolerance, and
-// the next step resolves it like any pair already too deep at its start.
+// impulse can make a body faster than it was) and meeting, before t1, a body
+// they were not linked to (of another island, or of their own: within its
+// step an island tests only its candidate pairs, not a fresh broadphase);
+// that pair is found at t1, deeper than the tolerance, and the next step
+// resolves it like any pair already too deep at its start. Growing the links
+// to twice the reach, which would cover a body sent back as fast as it came,
+// made the 1000-body box's islands 20 % larger and its run 23 % slower with
+// the same impacts, searches and samples, so the links are the reach.
 #include "core/collisions.hpp"
 #include "core/islands.hpp"
 #include "core/ode.hpp"
@@ -105,7 +110,7 @@ class CollisionStep {
         if (!hits[k].empty()) c_.respond(m_, y, setup.everyone, hits[k], h, profile);
         continue;
       }
-      step_alone(is, y, y0, t0, t1, profile);
+      step_alone(is, d.candidates, y, y0, t0, t1, profile);
     }
   }
 
@@ -159,14 +164,31 @@ class CollisionStep {
   }
 
   // Step 4 above: the island from (t0, y0) to t1 in sub-steps of its own.
-  void step_alone(const Island& is, std::span<double> y, std::span<const double> y0, double t0, double t1,
-                  Profile& profile) const {
+  void step_alone(const Island& is, const std::vector<std::pair<int, int>>& candidates, std::span<double> y,
+                  std::span<const double> y0, double t0, double t1, Profile& profile) const {
     const auto& setup = c_.setup;
     const std::size_t stride = Bodies::state_size(m_) / setup.everyone.size();
     Alone a(m_, is.bodies, stride, setup.solver);
     ++c_.counters.local_islands;
     c_.counters.local_island_bodies += is.moving;
     std::vector<double> ys = a.gather(y0), yb;
+    // The island's candidate pairs in its own numbering: within the step its
+    // bodies can meet only each other and the static bodies they link to.
+    std::vector<std::pair<int, int>> among;
+    among.reserve(is.pairs.size());
+    const auto local = [&](int w) {
+      const auto movers = is.bodies.begin() + static_cast<long>(is.moving);
+      const auto at = std::lower_bound(is.bodies.begin(), movers, w);
+      return static_cast<int>((at != movers && *at == w ? at : std::lower_bound(movers, is.bodies.end(), w)) -
+                              is.bodies.begin());
+    };
+    for (const std::size_t k : is.pairs) {
+      const int i = local(candidates[k].first), j = local(candidates[k].second);
+      among.emplace_back(std::min(i, j), std::max(i, j));
+    }
+    // In the order a broadphase gives its pairs, so the contacts are solved
+    // in the same order as if the island had been swept afresh.
+    std::sort(among.begin(), among.end());
     const double tol = setup.settings.penetration_tolerance;
     double t = t0;
     bool at_start = true;  // the world's integration already reached t1 from here
@@ -184,12 +206,12 @@ class CollisionStep {
       else a.integrate(t, tb, ys, profile);
       at_start = false;
       fail_if_nonfinite(a, ys, "integrate", tb);
-      Detection d = c_.detect(a.model, ys, a.world, {}, profile);
+      Detection d = c_.detect_among(a.model, ys, a.world, among, profile);
       double accepted = tb;
       if (d.max_depth > tol) {
         accepted = impact(a, d, t, yb, tb, ys, profile);
         fail_if_nonfinite(a, ys, "time_of_impact", accepted);
-        d = c_.detect(a.model, ys, a.world, {}, profile);
+        d = c_.detect_among(a.model, ys, a.world, among, profile);
       }
       if (!d.hits.empty()) {
         c_.respond(a.model, ys, a.world, d.hits, accepted - t, profile);

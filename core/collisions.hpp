@@ -211,13 +211,12 @@ struct Collider {
       pose = poses(m, y, world);
       // The method, the state it keeps and the frame the spheres are held in:
       // core/broadphase.hpp. Only the world keeps its broadphase between
-      // detections; an island's group (its bodies renumbered, detected in
-      // sub-steps) is swept afresh.
-      std::vector<Vec3> centres(n);
+      // detections; another group without its candidates (detect_among) is
+      // swept afresh.
+      const std::vector<Vec3> centres = sphere_centres(pose, world);
       std::vector<double> radii(n);
       std::vector<char> fixed(n);
       for (std::size_t k = 0; k < n; ++k) {
-        centres[k] = pose[k].apply(setup.sphere_centre[world[k]]);
         radii[k] = setup.sphere_radius[world[k]];
         fixed[k] = setup.is_static[world[k]];
       }
@@ -241,6 +240,56 @@ struct Collider {
       counters.broadphase_tree_updates += static_cast<std::uint64_t>(found.counters.tree_updates);
       counters.broadphase_pairs_kept += static_cast<std::uint64_t>(found.counters.pairs_kept);
     }
+    narrow(world, pose, pairs, d, profile);
+    return d;
+  }
+
+  // The same for a group whose candidate pairs are known (an island within
+  // its step: the pairs its bodies' grown spheres link, core/collision_step.hpp):
+  // of those, the pairs whose own spheres overlap (in a frame at the group's
+  // mean position) and that reach a static body's box go to the narrowphase.
+  Detection detect_among(const Model& m, std::span<const double> y, World world,
+                         std::span<const std::pair<int, int>> candidates, Profile& profile) const {
+    const std::size_t n = world.size();
+    Detection d;
+    std::vector<std::pair<int, int>> pairs;
+    std::vector<collision::Pose> pose;
+    {
+      ScopedStage timed(profile, Stage::broadphase);
+      pose = poses(m, y, world);
+      const std::vector<Vec3> centres = sphere_centres(pose, world);
+      Vec3 frame = Vec3::Zero();
+      for (const Vec3& c : centres) frame += c;
+      if (n > 0) frame /= static_cast<double>(n);
+      std::vector<typename Spheres::Sphere> spheres;
+      spheres.reserve(n);
+      for (std::size_t k = 0; k < n; ++k) spheres.push_back(Spheres::sphere(centres[k] - frame, setup.sphere_radius[world[k]]));
+      for (const auto& [i, j] : candidates) {
+        const bool si = setup.is_static[world[i]], sj = setup.is_static[world[j]];
+        ++counters.broadphase_candidates;
+        if (si && sj) continue;
+        if (!Spheres::overlap(spheres[static_cast<std::size_t>(i)], spheres[static_cast<std::size_t>(j)])) continue;
+        if (si != sj) {
+          const int st = si ? i : j, o = si ? j : i;
+          if (!reaches_static(pose[st], world[st], centres[o], setup.sphere_radius[world[o]])) continue;
+        }
+        pairs.emplace_back(i, j);
+      }
+    }
+    narrow(world, pose, pairs, d, profile);
+    return d;
+  }
+
+  // Each body's bounding-sphere centre in the world at its pose.
+  std::vector<Vec3> sphere_centres(const std::vector<collision::Pose>& pose, World world) const {
+    std::vector<Vec3> c(world.size());
+    for (std::size_t k = 0; k < world.size(); ++k) c[k] = pose[k].apply(setup.sphere_centre[world[k]]);
+    return c;
+  }
+
+  // The narrowphase of a group's pairs into d (hits and their deepest depth).
+  void narrow(World world, const std::vector<collision::Pose>& pose, const std::vector<std::pair<int, int>>& pairs,
+              Detection& d, Profile& profile) const {
     ScopedStage timed(profile, Stage::narrowphase);
     const auto method = setup.settings.method == ContactMethod::report ? collision::Method::sat_then_report
                                                                        : collision::Method::sat_then_manifold;
@@ -269,7 +318,6 @@ struct Collider {
       d.max_depth = std::max(d.max_depth, h.sat.depth);
       d.hits.push_back(std::move(h));
     }
-    return d;
   }
 
   // Whether a sphere (centre c, radius r, world) reaches static body s's box
