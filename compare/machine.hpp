@@ -1,5 +1,7 @@
 #pragma once
 // Where and with what a result was produced, for results.json.
+#include "compare/files.hpp"  // write_file_atomically, which every writer of results uses
+
 #include <filesystem>
 #include <string>
 
@@ -14,9 +16,5 @@ struct MachineInfo {
 
 MachineInfo machine_info();
 std::string tool_version();
-
-// Writes `text` to `path` through a temporary file in the same folder and a
-// rename, so an interrupted run never leaves half a file. Throws run_error.
-void write_file_atomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace gacompare::compare

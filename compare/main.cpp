@@ -4,6 +4,7 @@
 #include "compare/accuracy.hpp"
 #include "compare/collide.hpp"
 #include "compare/check.hpp"
+#include "compare/files.hpp"
 #include "compare/machine.hpp"
 #include "compare/report.hpp"
 #include "compare/runner.hpp"
@@ -33,26 +34,32 @@ using namespace gacompare;
 
 namespace {
 
+// What a scene may ask of a run (core/budget.hpp): the defaults, raised by
+// --max-samples, --max-steps and --max-memory.
+core::Limits limits;
+
 std::vector<core::Scene> load_all(const std::vector<std::string>& files) {
   std::vector<core::Scene> scenes;
   std::set<std::string> names;
   for (const auto& f : files) {
-    scenes.push_back(core::load_scene(f));
+    scenes.push_back(core::load_scene(f, limits));
     if (!names.insert(scenes.back().name).second)
       throw input_error(f + ": scene name '" + scenes.back().name + "' is used by another scene on the command line");
   }
   return scenes;
 }
 
+// reports/<what>-<date>, claimed so that two runs in one second get two folders.
 fs::path default_out(const std::string& what) {
   std::string date = compare::machine_info().date;
   std::replace(date.begin(), date.end(), ':', '-');
-  return fs::path("reports") / (what + "-" + date);
+  return compare::claim_default_folder(what, date);
 }
 
 int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std::string>& backends,
                    compare::Selection selection, int repeats, fs::path out, bool quiet) {
   if (out.empty()) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
+  const compare::FolderLock lock(out);  // before any work: a bad --out is exit 2 now, not after the runs
   std::vector<compare::SceneResult> results;
   bool failed = false;
   for (const auto& scene : scenes) {
@@ -76,6 +83,7 @@ int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std
 int run_at_accuracy(const std::vector<core::Scene>& scenes, std::vector<std::string> backends, double target,
                     int repeats, fs::path out, bool quiet) {
   if (out.empty()) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
+  const compare::FolderLock lock(out);
   std::erase(backends, "bullet");  // no tolerance to search: Bullet steps at a fixed 1/240 s with its own contacts
   if (backends.empty()) throw input_error("--accuracy: compares traditional and cga; name at least one of them");
   for (const auto& scene : scenes)  // refuse before anything runs
@@ -99,7 +107,7 @@ int run_at_accuracy(const std::vector<core::Scene>& scenes, std::vector<std::str
   std::string all;
   for (std::size_t k = 0; k < results.size(); ++k) {
     const std::string section = compare::accuracy_section_md(plans[k], results[k]);
-    compare::insert_section(results.size() == 1 ? out / "report.md" : out / results[k].scene.name / "report.md", section);
+    compare::insert_section(results.size() == 1 ? out / "report.md" : out / compare::file_name_for(results[k].scene.name) / "report.md", section);
     all += "\n# " + results[k].scene.name + "\n" + section;
   }
   compare::write_file_atomically(out / "accuracy.md", "# Time at equal accuracy\n" + all);
@@ -129,6 +137,8 @@ int check_scenes(const std::vector<core::Scene>& scenes, const fs::path& baselin
   std::error_code ec;
   if (!update && !fs::is_directory(baseline_dir, ec))
     throw input_error(baseline_dir.string() + ": no such baseline folder (create it with --update)");
+  std::optional<compare::FolderLock> lock;
+  if (update) lock.emplace(baseline_dir);
   std::vector<compare::CheckLine> lines;
   for (const auto& scene : scenes) {
     const fs::path file = compare::baseline_path(baseline_dir, scene.name);
@@ -228,6 +238,7 @@ int run_sweep(const core::Scene& scene, const compare::SweepSpec& spec, const fs
               bool quiet) {
   const core::Scene swept = compare::swept_scene(scene, spec);
   const auto units = compare::sweep_units(spec, swept);
+  const compare::FolderLock lock(out);
   const fs::path cells = out / "cells";
   fs::create_directories(cells);
   compare::write_file_atomically(out / "sweep.json", sweep_manifest(scene, spec, units).dump(1) + "\n");
@@ -271,7 +282,8 @@ int merge_sweeps(const std::vector<std::string>& dirs, const fs::path& out) {
     if (manifest.is_null()) manifest = m;
     else if (m != manifest) throw input_error(d + ": a different sweep (scene, settings or units) than " + dirs.front());
   }
-  const core::Scene scene = core::load_scene(manifest.at("scene_file").get<std::string>());
+  const core::Scene scene = core::load_scene(manifest.at("scene_file").get<std::string>(), limits);
+  const compare::FolderLock lock(out);
   if (scene.sha256 != manifest.at("scene_sha256"))
     throw input_error(manifest.at("scene_file").get<std::string>() + ": the scene changed since the sweep ran (sha256 differs)");
   fs::create_directories(out / "cells");
@@ -330,7 +342,7 @@ int list_scenes(const fs::path& dir) {
     if (e.path().extension() == ".json") files.push_back(e.path());
   std::sort(files.begin(), files.end());
   for (const auto& f : files) {
-    const auto s = core::load_scene(f);
+    const auto s = core::load_scene(f, limits);
     std::cout << f.string() << "\t" << s.name << "\t" << s.description << "\n";
   }
   return 0;
@@ -346,6 +358,13 @@ int main(int argc, char** argv) {
   app.fallthrough();  // global flags (--quiet) may follow the subcommand
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+  // Budgets decided at load, before any work (core/budget.hpp): raise them for a scene that needs more.
+  app.add_option("--max-samples", limits.max_samples, "most output samples a scene may ask for (default 1e6)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-steps", limits.max_steps, "most solver or collision steps of one run (default 1e8)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-memory", limits.max_memory_mb, "most MB the samples of one run may take (default 4096)")
+      ->check(CLI::PositiveNumber);
 
   std::string run_scene, run_backend = "traditional", run_out;
   int run_repeat = 1;
@@ -468,7 +487,7 @@ int main(int argc, char** argv) {
       spec.peer = !sw_no_peer;
       if (!sw_error.empty()) spec.error = compare::measure_from_string(sw_error);
       const auto shard = parse_shard(sw_shard);
-      const core::Scene scene = core::load_scene(sw_scene);
+      const core::Scene scene = core::load_scene(sw_scene, limits);
       if (spec.error && compare::body_only(*spec.error) && scene.bodies.empty())
         throw input_error("--error " + sw_error + ": the scene '" + scene.name + "' has no bodies");
       return run_sweep(scene, spec, sw_out, shard, quiet);

@@ -71,6 +71,14 @@ OdeSolver solver_for(const Scene& scene, const typename B::Model& model, std::si
                                          std::span<const double> err) {
     return B::error_ratio(model, scene.solver, y0, y1, err);
   });
+  solver.set_step_budget(scene.limits.max_steps);
+  // Component i's owner, by the backend's own naming of a non-finite state
+  // (only asked once a run has failed).
+  solver.set_describe([&model, n](std::size_t i) {
+    std::vector<double> y(n, 0.0);
+    y[i] = NAN;
+    return B::first_nonfinite(model, y);
+  });
   return solver;
 }
 
@@ -145,7 +153,14 @@ Run simulate(const Scene& scene) {
     try {
       B::advance(model, solver, f, t, times[k], y, run.profile, after);
     } catch (const Error& e) {
+      // Every stop names its time; those that cannot (the constraint solve)
+      // get the output interval they stopped in.
       run.error = std::string(e.what());
+      if (run.error->find("t=") == std::string::npos) {
+        std::ostringstream when;
+        when << ", between t=" << times[k - 1] << " and t=" << times[k];
+        *run.error += when.str();
+      }
       break;
     }
     if (auto bad = B::first_nonfinite(model, y); !bad.empty()) {
