@@ -112,14 +112,16 @@ std::string file_name_for(const std::string& name) {
   return out;
 }
 
-FolderLock::FolderLock(const fs::path& dir) {
+FolderLock::FolderLock(const fs::path& dir, bool claimed) : dir_(dir) {
   std::error_code ec;
+  made_ = claimed || !fs::exists(dir, ec);
   fs::create_directories(dir, ec);
   if (ec) throw input_error(dir.string() + ": cannot create the output folder: " + ec.message());
   fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fd_ < 0) throw input_error(dir.string() + ": cannot open the output folder: " + reason(errno));
   const auto refuse = [&](const std::string& what) {
     ::close(fd_);
+    fd_ = -1;
     throw input_error(dir.string() + ": " + what);
   };
   if (::access(dir.c_str(), W_OK) != 0) refuse("cannot write in the output folder: " + reason(errno));
@@ -130,10 +132,14 @@ FolderLock::FolderLock(const fs::path& dir) {
   remove_temporaries(dir, 2);
 }
 
-FolderLock::FolderLock(FolderLock&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
+FolderLock::FolderLock(FolderLock&& other) noexcept : fd_(other.fd_), dir_(std::move(other.dir_)), made_(other.made_) {
+  other.fd_ = -1;
+}
 
 FolderLock::~FolderLock() {
-  if (fd_ >= 0) ::close(fd_);  // releases the lock
+  if (fd_ < 0) return;
+  if (made_) ::rmdir(dir_.c_str());  // only when empty: rmdir never removes a file
+  ::close(fd_);                       // releases the lock
 }
 
 fs::path claim_default_folder(const std::string& what, const std::string& date) {

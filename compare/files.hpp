@@ -30,10 +30,12 @@ std::string file_name_for(const std::string& name);
 // included, so a lock is never left behind. Temporaries a killed run left in
 // the folder (and its subfolders) are removed once the lock is held. Throws
 // input_error (exit 2) naming the folder when it cannot be created or written,
-// or when another gacompare holds it.
+// or when another gacompare holds it. A folder it made (or that was `claimed`
+// for it, claim_default_folder) and that is still empty when the lock goes is
+// removed: a run refused before writing anything leaves no trace.
 class FolderLock {
  public:
-  explicit FolderLock(const std::filesystem::path& dir);
+  explicit FolderLock(const std::filesystem::path& dir, bool claimed = false);
   FolderLock(FolderLock&& other) noexcept;
   FolderLock& operator=(FolderLock&&) = delete;
   FolderLock(const FolderLock&) = delete;
@@ -41,6 +43,8 @@ class FolderLock {
 
  private:
   int fd_ = -1;
+  std::filesystem::path dir_;
+  bool made_ = false;
 };
 
 // The default output folder, reports/<file_name_for(what)>-<UTC date>, made

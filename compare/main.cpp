@@ -58,8 +58,9 @@ fs::path default_out(const std::string& what) {
 
 int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std::string>& backends,
                    compare::Selection selection, int repeats, fs::path out, bool quiet) {
-  if (out.empty()) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
-  const compare::FolderLock lock(out);  // before any work: a bad --out is exit 2 now, not after the runs
+  const bool claimed = out.empty();
+  if (claimed) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
+  const compare::FolderLock lock(out, claimed);  // before any work: a bad --out is exit 2 now, not after the runs
   std::vector<compare::SceneResult> results;
   bool failed = false;
   for (const auto& scene : scenes) {
@@ -82,8 +83,9 @@ int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std
 // (compare/accuracy.hpp), the settings cached in DIR/accuracy.json, then timed.
 int run_at_accuracy(const std::vector<core::Scene>& scenes, std::vector<std::string> backends, double target,
                     int repeats, fs::path out, bool quiet) {
-  if (out.empty()) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
-  const compare::FolderLock lock(out);
+  const bool claimed = out.empty();
+  if (claimed) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
+  const compare::FolderLock lock(out, claimed);
   std::erase(backends, "bullet");  // no tolerance to search: Bullet steps at a fixed 1/240 s with its own contacts
   if (backends.empty()) throw input_error("--accuracy: compares traditional and cga; name at least one of them");
   for (const auto& scene : scenes)  // refuse before anything runs

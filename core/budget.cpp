@@ -12,7 +12,14 @@ namespace gacompare::core {
 
 namespace {
 
-std::string fmt(double x) {  // shortest round-trip form, as the loader's messages
+// A number as given (shortest round trip: 1e-300, 4096, 2.5) and a number
+// worked out (three digits: 9.6e+03).
+std::string fmt(double x) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return ec == std::errc() ? std::string(buffer, end) : "?";
+}
+std::string approx(double x) {
   char buffer[32];
   const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 3);
   return ec == std::errc() ? std::string(buffer, end) : "?";
@@ -74,19 +81,25 @@ BodyScale body_scale(const Body& body) {
   return out;
 }
 
-std::optional<Refusal> over_budget(const Scene& s) {
+std::optional<Refusal> over_sample_budget(const Scene& s) {
   const Limits& lim = s.limits;
   const double samples = s.duration / s.output_every;
   if (samples > lim.max_samples)
     return Refusal{"/output/every", "expected an interval giving at most " + fmt(lim.max_samples) +
-                                        " samples (--max-samples raises it), got duration / every = " + fmt(samples)};
+                                        " samples (--max-samples raises it), got duration / every = " + approx(samples)};
   const double particles = static_cast<double>(particle_count(s)), bodies = static_cast<double>(s.bodies.size());
   const double bytes = (std::floor(samples) + 2) * (particles * kBytesPerParticleSample + bodies * kBytesPerBodySample);
   if (bytes > lim.max_memory_mb * 1e6)
     return Refusal{"/output/every", "expected an interval whose samples fit in " + fmt(lim.max_memory_mb) +
-                                        " MB (--max-memory raises it), got " + fmt(samples) + " samples of " +
+                                        " MB (--max-memory raises it), got " + approx(samples) + " samples of " +
                                         fmt(particles) + " particle(s) and " + fmt(bodies) + " body(ies), about " +
-                                        fmt(bytes / 1e6) + " MB"};
+                                        approx(bytes / 1e6) + " MB"};
+  return std::nullopt;
+}
+
+std::optional<Refusal> over_step_budget(const Scene& s) {
+  const Limits& lim = s.limits;
+  const double samples = s.duration / s.output_every;
   if (!is_adaptive(s.solver.method)) {
     // As OdeSolver::advance: every output interval in equal steps of at most dt.
     const double intervals = std::ceil(samples * (1 - 1e-12));
@@ -94,7 +107,7 @@ std::optional<Refusal> over_budget(const Scene& s) {
     if (steps > lim.max_steps)
       return Refusal{"/solver/dt", "expected a step giving at most " + fmt(lim.max_steps) +
                                        " steps (--max-steps raises it), got dt = " + fmt(s.solver.dt) + " s: " +
-                                       fmt(steps) + " steps over " + fmt(s.duration) + " s"};
+                                       approx(steps) + " steps over " + fmt(s.duration) + " s"};
   }
   const auto* c = s.find_effect<Collisions>();
   if (!c || s.bodies.empty()) return std::nullopt;
@@ -115,7 +128,7 @@ std::optional<Refusal> over_budget(const Scene& s) {
   if (!(inradius > c->penetration_tolerance))
     return Refusal{body_path(thinnest, "shape"),
                    "expected a body thicker than the collisions' penetration tolerance (" +
-                       fmt(c->penetration_tolerance) + " m), got one whose inradius is " + fmt(inradius) +
+                       fmt(c->penetration_tolerance) + " m), got one whose inradius is " + approx(inradius) +
                        " m: a contact may sink that deep, and so pass through it"};
   const double h_tunnel = v > 0 ? 0.5 * inradius / v : INFINITY;
   const double h = std::min(c->step, h_tunnel);
@@ -124,12 +137,12 @@ std::optional<Refusal> over_budget(const Scene& s) {
     if (c->step <= h_tunnel)
       return Refusal{step_path, "expected a collision step giving at most " + fmt(lim.max_steps) +
                                     " steps (--max-steps raises it), got step = " + fmt(c->step) + " s: " +
-                                    fmt(steps) + " steps over " + fmt(s.duration) + " s"};
+                                    approx(steps) + " steps over " + fmt(s.duration) + " s"};
     return Refusal{body_path(fastest, "velocity"),
                    "expected speeds the collision loop can follow in at most " + fmt(lim.max_steps) +
                        " steps (--max-steps raises it): a step moves no body more than half the smallest inradius (" +
-                       fmt(inradius) + " m, body '" + s.bodies[thinnest].name + "'), and body '" +
-                       s.bodies[fastest].name + "' may reach " + fmt(v) + " m/s, so " + fmt(steps) +
+                       approx(inradius) + " m, body '" + s.bodies[thinnest].name + "'), and body '" +
+                       s.bodies[fastest].name + "' may reach " + approx(v) + " m/s, so " + approx(steps) +
                        " steps over " + fmt(s.duration) + " s"};
   }
   return std::nullopt;
@@ -138,11 +151,11 @@ std::optional<Refusal> over_budget(const Scene& s) {
 std::optional<Refusal> physically_absurd(const Scene& s) {
   const std::string c = "299792458 m/s";
   const auto too_fast = [&](double v, const std::string& what) {
-    return what + " of " + fmt(v) + " m/s, faster than light (" + c + "), where Newtonian mechanics means nothing";
+    return what + " of " + approx(v) + " m/s, faster than light (" + c + "), where Newtonian mechanics means nothing";
   };
   const auto length = [&](double x, const std::string& what) -> std::optional<std::string> {
     if (x > kMaxLength)
-      return "expected " + what + " of at most " + fmt(kMaxLength) + " m (the observable universe is 4.4e26 m across), got " + fmt(x) + " m";
+      return "expected " + what + " of at most " + fmt(kMaxLength) + " m (the observable universe is 4.4e26 m across), got " + approx(x) + " m";
     return std::nullopt;
   };
   for (std::size_t i = 0; i < s.particles.size(); ++i) {
@@ -158,7 +171,7 @@ std::optional<Refusal> physically_absurd(const Scene& s) {
   if (gravity && gravity->g.stableNorm() * s.duration > kSpeedOfLight)
     return Refusal{"/effects/" + std::to_string(effect_index<Gravity>(s)) + "/g",
                    "expected a gravity that keeps a falling body below light's speed over the duration (" +
-                       fmt(s.duration) + " s), got |g| = " + fmt(gravity->g.stableNorm()) + " m/s^2, " +
+                       fmt(s.duration) + " s), got |g| = " + approx(gravity->g.stableNorm()) + " m/s^2, " +
                        too_fast(gravity->g.stableNorm() * s.duration, "a speed")};
   std::vector<BodyScale> scale;
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
@@ -168,18 +181,18 @@ std::optional<Refusal> physically_absurd(const Scene& s) {
     if (sc.radius > kMaxLength || sc.radius < kMinLength)
       return Refusal{body_path(i, "shape"), "expected a body between " + fmt(kMinLength) + " m (a proton) and " +
                                                 fmt(kMaxLength) + " m (the observable universe) from its centre to its farthest corner, got " +
-                                                fmt(sc.radius) + " m"};
+                                                approx(sc.radius) + " m"};
     if (auto why = length(b.position.stableNorm(), "a distance from the origin")) return Refusal{body_path(i, "position"), *why};
     if (!(sc.mass >= kMinMass && sc.mass <= kMaxMass))
       return Refusal{body_path(i, b.mass ? "mass" : "density"),
                      "expected a mass in [" + fmt(kMinMass) + ", " + fmt(kMaxMass) +
-                         "] kg (an electron to the observable universe), got " + fmt(sc.mass) + " kg"};
+                         "] kg (an electron to the observable universe), got " + approx(sc.mass) + " kg"};
     if (b.velocity.stableNorm() > kSpeedOfLight)
       return Refusal{body_path(i, "velocity"), "expected a speed below light's, got " + too_fast(b.velocity.stableNorm(), "a speed")};
     if (b.angular_velocity.stableNorm() * sc.radius > kSpeedOfLight)
       return Refusal{body_path(i, "angular_velocity"),
-                     "expected a spin whose rim stays below light's speed, got |w| = " + fmt(b.angular_velocity.stableNorm()) +
-                         " rad/s at a radius of " + fmt(sc.radius) + " m, " + too_fast(b.angular_velocity.stableNorm() * sc.radius, "a rim speed")};
+                     "expected a spin whose rim stays below light's speed, got |w| = " + approx(b.angular_velocity.stableNorm()) +
+                         " rad/s at a radius of " + approx(sc.radius) + " m, " + too_fast(b.angular_velocity.stableNorm() * sc.radius, "a rim speed")};
   }
   if (const auto* a = s.find_effect<AppliedForces>())
     for (std::size_t k = 0; k < a->forces.size(); ++k) {
@@ -191,7 +204,7 @@ std::optional<Refusal> physically_absurd(const Scene& s) {
       if (dv > kSpeedOfLight)
         return Refusal{"/effects/" + std::to_string(effect_index<AppliedForces>(s)) + "/forces/" + std::to_string(k) + "/force",
                        "expected a force that keeps body '" + f.body + "' below light's speed while it acts, got |F| = " +
-                           fmt(f.force.stableNorm()) + " N on " + fmt(scale[i].mass) + " kg, " + too_fast(dv, "a speed change")};
+                           approx(f.force.stableNorm()) + " N on " + approx(scale[i].mass) + " kg, " + too_fast(dv, "a speed change")};
     }
   return std::nullopt;
 }

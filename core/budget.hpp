@@ -43,9 +43,12 @@ struct Refusal {
   std::string what;
 };
 
-// Samples, memory and steps against `scene.limits`. Needs every body's mesh
-// built (the loader builds them): a body's inradius bounds the collision step.
-std::optional<Refusal> over_budget(const Scene& scene);
+// Samples and their memory against `scene.limits`.
+std::optional<Refusal> over_sample_budget(const Scene& scene);
+// Fixed-step and collision steps against `scene.limits`: a body's inradius
+// bounds the collision step, so every body's mesh must be built (the loader
+// builds them). After physically_absurd, whose bounds keep these numbers finite.
+std::optional<Refusal> over_step_budget(const Scene& scene);
 
 // The physical bounds above.
 std::optional<Refusal> physically_absurd(const Scene& scene);

@@ -57,7 +57,7 @@ void OdeSolver::stop(const std::string& why, double t, double h, const std::vect
   std::ostringstream msg;
   msg << "integrate: " << why << ", at t=" << t << " (h=" << h << ")";
   if (const std::string who = is_adaptive(spec_.method) ? worst(err) : ""; !who.empty())
-    msg << "; the largest error estimate is " << who << "'s";
+    msg << "; " << who << " has the largest error estimate";
   throw run_error(msg.str());
 }
 

@@ -304,6 +304,28 @@ Vec3 vec3(const Val& v, Range r = Range::any) {
   return {number(v.at(0), r), number(v.at(1), r), number(v.at(2), r)};
 }
 
+// A size: between a proton and the observable universe (core/budget.hpp).
+double length(const Val& v) {
+  const double x = number(v, Range::positive);
+  if (x < kMinLength || x > kMaxLength)
+    v.expected("a length in [1e-15, 1e26] m (a proton's radius to the observable universe's)");
+  return x;
+}
+
+Vec3 lengths(const Val& v) {
+  array_of(v, 3, "an array of 3 numbers > 0");
+  return {length(v.at(0)), length(v.at(1)), length(v.at(2))};
+}
+
+// A point of a shape: no farther out than the observable universe, so that its
+// products (Qhull's, the mass properties') stay finite.
+Vec3 shape_point(const Val& v) {
+  const Vec3 p = vec3(v);
+  if (!(p.cwiseAbs().maxCoeff() <= kMaxLength))
+    v.expected("a point within 1e26 m of the shape's origin (the observable universe's radius)");
+  return p;
+}
+
 Eigen::Vector4d quaternion(const Val& v) {
   array_of(v, 4, "a unit quaternion [w, x, y, z]");
   Eigen::Vector4d q(number(v.at(0)), number(v.at(1)), number(v.at(2)), number(v.at(3)));
@@ -406,8 +428,9 @@ class Loader {
                   "expected a convex body, as the collisions effect needs (§2.4.2), got one that is " + c.reason);
     // Before any work: magnitudes no physics means, then what the run would take.
     s.limits = limits_;
+    if (const auto r = over_sample_budget(s)) fail_at(ctx_, r->path, r->what);
     if (const auto r = physically_absurd(s)) fail_at(ctx_, r->path, r->what);
-    if (const auto r = over_budget(s)) fail_at(ctx_, r->path, r->what);
+    if (const auto r = over_step_budget(s)) fail_at(ctx_, r->path, r->what);
     return s;
   }
 
@@ -630,20 +653,20 @@ class Loader {
 
   // The value of one shape key.
   Shape shape_value(const std::string& key, const Val& x) {
-    if (key == "box") return BoxShape{vec3(x, Range::positive)};
-    if (key == "tetrahedron") return TetrahedronShape{number(x, Range::positive)};
-    if (key == "octahedron") return OctahedronShape{number(x, Range::positive)};
-    if (key == "icosahedron") return IcosahedronShape{number(x, Range::positive)};
+    if (key == "box") return BoxShape{lengths(x)};
+    if (key == "tetrahedron") return TetrahedronShape{length(x)};
+    if (key == "octahedron") return OctahedronShape{length(x)};
+    if (key == "icosahedron") return IcosahedronShape{length(x)};
     if (key == "pyramid") {
       static constexpr Keys<2> keys = {"base", "height"};
       Obj p(x, keys, "an object {\"base\": b, \"height\": h}");
-      return PyramidShape{number(p.req("base"), Range::positive), number(p.req("height"), Range::positive)};
+      return PyramidShape{length(p.req("base")), length(p.req("height"))};
     }
     if (key == "hull") {
       const std::string hull_what = "an array of at least 4 points [x, y, z], not all in one plane";
       if (!x.j->is_array() || x.j->size() < 4) x.expected(hull_what);
       HullShape h;
-      for (std::size_t i = 0; i < x.j->size(); ++i) h.points.push_back(vec3(x.at(i)));
+      for (std::size_t i = 0; i < x.j->size(); ++i) h.points.push_back(shape_point(x.at(i)));
       if (!spans_volume(h.points)) x.fail("expected " + hull_what + ", got points that span no volume");
       h.mesh = built(x, [&] { return convex_hull(h.points); });
       return h;

@@ -56,6 +56,12 @@ std::string first_nonfinite(std::span<const double> y, std::size_t stride, const
 // simulate yet (and the issue that adds it): never a silent partial simulation.
 void check_implemented(const Scene& scene);
 
+// An error from building a backend's model ("bodies 'a' and 'b' overlap at
+// t = 0 ...") with the scene file and the JSON path of the first body it
+// names in front, as the loader's own errors have them; unchanged when it
+// names the file already.
+Error located(const Scene& scene, const Error& e);
+
 // velocity_of for a state of particles [x (3), v (3)] each.
 std::vector<int> particle_layout(std::size_t particles);
 
@@ -127,7 +133,13 @@ Run simulate(const Scene& scene) {
   Run run;
   run.backend = std::string(B::name);
   check_implemented(scene);
-  const auto model = B::build(scene);
+  const auto model = [&] {
+    try {
+      return B::build(scene);
+    } catch (const Error& e) {
+      throw located(scene, e);
+    }
+  }();
   std::vector<double> y(B::state_size(model));
   B::initial_state(model, y);
   OdeSolver solver = solver_for<B>(scene, model, y.size());
