@@ -23,6 +23,7 @@
 #include <iostream>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <unistd.h>
 
 #ifndef GACOMPARE_DATA_DIR
@@ -291,7 +292,12 @@ int merge_sweeps(const std::vector<std::string>& dirs, const fs::path& out) {
   fs::create_directories(out / "cells");
   for (const auto& d : dirs)
     for (const auto& e : fs::directory_iterator(fs::path(d) / "cells"))
-      if (e.path().extension() == ".json") fs::copy_file(e.path(), out / "cells" / e.path().filename(), fs::copy_options::overwrite_existing);
+      if (e.path().extension() == ".json") {  // whole or not at all, as every file written (kill -9 mid-copy)
+        std::ifstream in(e.path(), std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        compare::write_file_atomically(out / "cells" / e.path().filename(), text.str());
+      }
   compare::write_file_atomically(out / "sweep.json", manifest.dump(1) + "\n");
   // The units come from the manifest; their records carry everything else.
   std::vector<compare::Unit> units;

@@ -477,6 +477,8 @@ TEST(Reliability, KilledRunsLeaveNoHalfFileAndRerunsWork) {
       {"check", "check " + shot + " --baseline out --update --quiet"},
       {"sweep", "sweep " + shot + " --out out --solvers rk4,cash_karp45 --tolerances 1e-3:1e-5 --steps 1e-2:2 --repeats 1 --no-peer --quiet"},
       {"corpus", "corpus --seed 1 --count 2000 --out out/corpus.json"},
+      {"collide", "collide " + sh((fs::path(GACOMPARE_DATA_DIR) / "collision" / "hand.json").string()) +
+                      " --repeat 3 --out out/collide.json --table out/table.md"},
   };
   for (const auto& [name, args] : commands)
     for (int delay_ms : {30, 150, 400}) {
