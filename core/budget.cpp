@@ -66,6 +66,12 @@ double top_speed(const Scene& s, const std::vector<BodyScale>& scale, std::size_
   return v;
 }
 
+std::optional<Refusal> mass_out_of_range(const std::string& path, double mass) {
+  if (mass >= kMinMass && mass <= kMaxMass) return std::nullopt;
+  return Refusal{path, "expected a mass in [" + fmt(kMinMass) + ", " + fmt(kMaxMass) +
+                           "] kg (an electron to the observable universe), got " + approx(mass) + " kg"};
+}
+
 }  // namespace
 
 BodyScale body_scale(const Body& body) {
@@ -163,9 +169,17 @@ std::optional<Refusal> physically_absurd(const Scene& s) {
     const std::string at = "/particles/" + std::to_string(i);
     if (p.velocity.stableNorm() > kSpeedOfLight) return Refusal{at + "/velocity", "expected a speed below light's, got " + too_fast(p.velocity.stableNorm(), "a speed")};
     if (auto why = length(p.position.stableNorm(), "a distance from the origin")) return Refusal{at + "/position", *why};
-    if (p.mass < kMinMass || p.mass > kMaxMass)
-      return Refusal{at + "/mass", "expected a mass in [" + fmt(kMinMass) + ", " + fmt(kMaxMass) +
-                                       "] kg (an electron to the observable universe), got " + fmt(p.mass) + " kg"};
+    if (auto r = mass_out_of_range(at + "/mass", p.mass)) return r;
+  }
+  for (std::size_t i = 0; i < s.generators.size(); ++i) {
+    const std::string at = "/generators/" + std::to_string(i);
+    double mass = 0, reach = 0;  // reach: how far from the origin its last particle is, at most
+    if (const auto* net = std::get_if<ParticleNet>(&s.generators[i]))
+      mass = net->mass, reach = net->origin.stableNorm() + net->spacing * (net->rows + net->cols);
+    if (const auto* chain = std::get_if<ParticleChain>(&s.generators[i]))
+      mass = chain->mass, reach = chain->origin.stableNorm() + chain->spacing * chain->count;
+    if (auto why = length(reach, "particles at a distance from the origin")) return Refusal{at + "/spacing", *why};
+    if (auto r = mass_out_of_range(at + "/mass", mass)) return r;
   }
   const auto* gravity = s.find_effect<Gravity>();
   if (gravity && gravity->g.stableNorm() * s.duration > kSpeedOfLight)
@@ -183,10 +197,7 @@ std::optional<Refusal> physically_absurd(const Scene& s) {
                                                 fmt(kMaxLength) + " m (the observable universe) from its centre to its farthest corner, got " +
                                                 approx(sc.radius) + " m"};
     if (auto why = length(b.position.stableNorm(), "a distance from the origin")) return Refusal{body_path(i, "position"), *why};
-    if (!(sc.mass >= kMinMass && sc.mass <= kMaxMass))
-      return Refusal{body_path(i, b.mass ? "mass" : "density"),
-                     "expected a mass in [" + fmt(kMinMass) + ", " + fmt(kMaxMass) +
-                         "] kg (an electron to the observable universe), got " + approx(sc.mass) + " kg"};
+    if (auto r = mass_out_of_range(body_path(i, b.mass ? "mass" : "density"), sc.mass)) return r;
     if (b.velocity.stableNorm() > kSpeedOfLight)
       return Refusal{body_path(i, "velocity"), "expected a speed below light's, got " + too_fast(b.velocity.stableNorm(), "a speed")};
     if (b.angular_velocity.stableNorm() * sc.radius > kSpeedOfLight)
