@@ -5,6 +5,8 @@
 // run works in a fresh folder with its own TMPDIR, which is checked after).
 #include "cli_run.hpp"
 
+#include "core/sha256.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -141,6 +143,15 @@ TEST(Reliability, NamesWithShellSyntaxAreData) {
     }
     EXPECT_NE(slurp(w.out() / f / "report.html").find("<svg"), std::string::npos);
   }
+  // sweep names its diagram after the scene: the sanitised name too.
+  json c = bundled("projectile_linear_drag");
+  c["name"] = "..up`touch PWNED`";
+  const Result swept = w.run("sweep " + sh(w.scene("c.json", c).string()) +
+                             " --out out/sweep --solvers rk4 --steps 1e-2:1 --repeats 1 --no-peer --quiet");
+  ASSERT_EQ(swept.code, 0) << swept.err;
+  EXPECT_TRUE(fs::exists(w.out() / "sweep" / ("_.up_touch_PWNED_-" + gacompare::core::sha256_hex(c["name"].get<std::string>()).substr(0, 8) +
+                                              "_work_precision.svg")));
+  expect_clean(w);
 }
 
 // A newline or a terminal control character in any name is refused at load.
