@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 #include "core/sha256.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -33,9 +34,20 @@ fs::path temporary_for(const fs::path& path) {
   return path.parent_path() / name;
 }
 
+// Exactly what temporary_for makes, .NAME.PID-N.tmp, and nothing else of the
+// user's: --out may be a folder that holds other files.
 bool is_temporary(const fs::path& p) {
   const std::string name = p.filename().string();
-  return name.size() > 5 && name.front() == '.' && name.compare(name.size() - 4, 4, ".tmp") == 0;
+  if (name.size() < 9 || name.front() != '.' || name.compare(name.size() - 4, 4, ".tmp") != 0) return false;
+  const std::string middle = name.substr(0, name.size() - 4);  // .NAME.PID-N
+  const auto dash = middle.rfind('-'), dot = middle.rfind('.', dash == std::string::npos ? 0 : dash);
+  if (dash == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 >= dash || dash + 1 >= middle.size())
+    return false;
+  const auto digits = [&](std::size_t a, std::size_t b) {
+    return std::all_of(middle.begin() + static_cast<std::ptrdiff_t>(a), middle.begin() + static_cast<std::ptrdiff_t>(b),
+                       [](char c) { return c >= '0' && c <= '9'; });
+  };
+  return digits(dot + 1, dash) && digits(dash + 1, middle.size());
 }
 
 // What a killed run left: .NAME*.tmp files in the folder and the folders below

@@ -83,10 +83,14 @@ TEST(Files, AFolderHasOneWriter) {
   std::ofstream(d / ".results.json.123-0.tmp") << "half";
   std::ofstream(d / "scene" / ".report.md.123-1.tmp") << "half";
   std::ofstream(d / "kept.json") << "{}";
+  std::ofstream(d / ".someone_elses.tmp") << "theirs";  // --out may hold other files: only ours go
+  std::ofstream(d / ".a.b-c.tmp") << "theirs";
   { const FolderLock again(d); }
   EXPECT_FALSE(fs::exists(d / ".results.json.123-0.tmp"));
   EXPECT_FALSE(fs::exists(d / "scene" / ".report.md.123-1.tmp"));
   EXPECT_TRUE(fs::exists(d / "kept.json"));
+  EXPECT_TRUE(fs::exists(d / ".someone_elses.tmp"));
+  EXPECT_TRUE(fs::exists(d / ".a.b-c.tmp"));
 }
 
 }  // namespace
