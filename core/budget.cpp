@@ -161,7 +161,7 @@ std::optional<Refusal> physically_absurd(const Scene& s) {
   };
   const auto length = [&](double x, const std::string& what) -> std::optional<std::string> {
     if (x > kMaxLength)
-      return "expected " + what + " of at most " + fmt(kMaxLength) + " m (the observable universe is 4.4e26 m across), got " + approx(x) + " m";
+      return "expected " + what + " of at most " + fmt(kMaxLength) + " m (the observable universe's radius is 4.4e26 m), got " + approx(x) + " m";
     return std::nullopt;
   };
   for (std::size_t i = 0; i < s.particles.size(); ++i) {
