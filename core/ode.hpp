@@ -82,7 +82,8 @@ class OdeSolver {
   // time and, through `who` (component index -> "body 'cube'"), what holds the
   // largest error of the last step. The scene's limits.max_steps by default.
   using DescribeFn = std::function<std::string(std::size_t)>;
-  void set_step_budget(double steps) { budget_ = steps; }
+  // At most 2^53: every count below it is exact in a double and converts to an integer.
+  void set_step_budget(double steps) { budget_ = std::min(steps, 0x1p53); }
   void set_describe(DescribeFn who) { who_ = std::move(who); }
 
  private:
