@@ -1,5 +1,6 @@
 #include "compare/check.hpp"
 
+#include "compare/files.hpp"
 #include "compare/machine.hpp"
 #include "compare/metrics.hpp"
 #include "compare/results.hpp"
@@ -164,7 +165,7 @@ std::optional<core::Sample> baseline_sample(const core::Scene& scene, const nloh
 }  // namespace
 
 std::filesystem::path baseline_path(const std::filesystem::path& dir, const std::string& scene) {
-  return dir / (scene + ".json");
+  return dir / (file_name_for(scene) + ".json");  // compare/files.hpp: a name is never a path
 }
 
 json baseline_json(const SceneResult& r) {

@@ -66,24 +66,4 @@ MachineInfo finished(MachineInfo m) {
   return m;
 }
 
-void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);
-  if (ec) throw run_error(path.parent_path().string() + ": cannot create folder: " + ec.message());
-  // Appended piece by piece: GCC 12's "." + string trips a false -Wrestrict (bug 105651).
-  std::string name = ".";
-  name += path.filename().string();
-  name += ".tmp";
-  const fs::path tmp = path.parent_path() / name;
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) throw run_error(tmp.string() + ": cannot write");
-  }
-  fs::rename(tmp, path, ec);
-  if (ec) throw run_error(path.string() + ": cannot rename from " + tmp.string() + ": " + ec.message());
-}
-
 }  // namespace gacompare::compare

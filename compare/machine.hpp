@@ -1,6 +1,8 @@
 #pragma once
 // Where and with what a result was produced, for results.json.
 #include <array>
+#include "compare/files.hpp"  // write_file_atomically, which every writer of results uses
+
 #include <filesystem>
 #include <string>
 
@@ -37,9 +39,5 @@ MachineInfo machine_info();
 // The same record with its end load average taken now.
 MachineInfo finished(MachineInfo m);
 std::string tool_version();
-
-// Writes `text` to `path` through a temporary file in the same folder and a
-// rename, so an interrupted run never leaves half a file. Throws run_error.
-void write_file_atomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace gacompare::compare

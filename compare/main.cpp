@@ -6,6 +6,7 @@
 #include "compare/check.hpp"
 #include "compare/cli_args.hpp"
 #include "compare/diff.hpp"
+#include "compare/files.hpp"
 #include "compare/machine.hpp"
 #include "compare/report.hpp"
 #include "compare/runner.hpp"
@@ -37,6 +38,10 @@ using namespace gacompare;
 
 namespace {
 
+// What a scene may ask of a run (core/budget.hpp): the defaults, raised by
+// --max-samples, --max-steps and --max-memory.
+core::Limits limits;
+
 std::vector<core::Scene> load_all(const std::vector<std::string>& files) {
   std::vector<core::Scene> scenes;
   std::set<std::string> names;
@@ -46,17 +51,18 @@ std::vector<core::Scene> load_all(const std::vector<std::string>& files) {
     if (std::find(backends.begin(), backends.end(), f) != backends.end() && !fs::is_regular_file(f, ec))
       throw input_error("'" + f + "' is a backend, not a scene file: give --backends comma-separated before the "
                         "scenes (--backends traditional,cga) or after them");
-    scenes.push_back(core::load_scene(f));
+    scenes.push_back(core::load_scene(f, limits));
     if (!names.insert(scenes.back().name).second)
       throw input_error(f + ": scene name '" + scenes.back().name + "' is used by another scene on the command line");
   }
   return scenes;
 }
 
+// reports/<what>-<date>, claimed so that two runs in one second get two folders.
 fs::path default_out(const std::string& what) {
   std::string date = compare::machine_info().date;
   std::replace(date.begin(), date.end(), ':', '-');
-  return fs::path("reports") / (what + "-" + date);
+  return compare::claim_default_folder(what, date);
 }
 
 // One line on stderr per round of repeats of each scene, whether stderr is a
@@ -74,7 +80,9 @@ compare::Progress progress_line(const std::string& scene, std::size_t k, std::si
 
 int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std::string>& backends,
                    compare::Selection selection, int repeats, fs::path out, bool quiet) {
-  if (out.empty()) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
+  const bool claimed = out.empty();
+  if (claimed) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
+  const compare::FolderLock lock(out, claimed);  // before any work: a bad --out is exit 2 now, not after the runs
   const compare::MachineInfo machine = compare::machine_info();  // the load before this run adds its own
   std::vector<compare::SceneResult> results;
   bool failed = false;
@@ -97,7 +105,9 @@ int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std
 // (compare/accuracy.hpp), the settings cached in DIR/accuracy.json, then timed.
 int run_at_accuracy(const std::vector<core::Scene>& scenes, std::vector<std::string> backends, double target,
                     int repeats, fs::path out, bool quiet) {
-  if (out.empty()) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
+  const bool claimed = out.empty();
+  if (claimed) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
+  const compare::FolderLock lock(out, claimed);
   const compare::MachineInfo machine = compare::machine_info();
   std::erase(backends, "bullet");  // no tolerance to search: Bullet steps at a fixed 1/240 s with its own contacts
   if (backends.empty()) throw input_error("--accuracy: compares traditional and cga; name at least one of them");
@@ -123,7 +133,7 @@ int run_at_accuracy(const std::vector<core::Scene>& scenes, std::vector<std::str
   std::string all;
   for (std::size_t k = 0; k < results.size(); ++k) {
     const std::string section = compare::accuracy_section_md(plans[k], results[k]);
-    compare::insert_section(results.size() == 1 ? out / "report.md" : out / results[k].scene.name / "report.md", section);
+    compare::insert_section(results.size() == 1 ? out / "report.md" : out / compare::file_name_for(results[k].scene.name) / "report.md", section);
     all += "\n# " + results[k].scene.name + "\n" + section;
   }
   compare::write_file_atomically(out / "accuracy.md", "# Time at equal accuracy\n" + all);
@@ -167,6 +177,8 @@ int check_scenes(const std::vector<core::Scene>& scenes, const fs::path& baselin
     throw input_error("--max-time-ratio: a time's interval needs --repeat 2 or more (5 or more for a useful one)");
   if (!update && !fs::is_directory(baseline_dir, ec))
     throw input_error(baseline_dir.string() + ": no such baseline folder (create it with --update)");
+  std::optional<compare::FolderLock> lock;
+  if (update) lock.emplace(baseline_dir);
   std::vector<compare::CheckLine> lines;
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     const auto& scene = scenes[k];
@@ -275,6 +287,7 @@ int run_sweep(const core::Scene& scene, const compare::SweepSpec& spec, const fs
               bool quiet) {
   const core::Scene swept = compare::swept_scene(scene, spec);
   const auto units = compare::sweep_units(spec, swept);
+  const compare::FolderLock lock(out);
   const fs::path cells = out / "cells";
   fs::create_directories(cells);
   compare::write_file_atomically(out / "sweep.json", sweep_manifest(scene, spec, units).dump(1) + "\n");
@@ -322,13 +335,19 @@ int merge_sweeps(const std::vector<std::string>& dirs, const fs::path& out) {
     else if (m != manifest)
       throw input_error(d + ": a different sweep (scene, settings, build or units) than " + dirs.front());
   }
-  const core::Scene scene = core::load_scene(manifest.at("scene_file").get<std::string>());
+  const core::Scene scene = core::load_scene(manifest.at("scene_file").get<std::string>(), limits);
+  const compare::FolderLock lock(out);
   if (scene.sha256 != manifest.at("scene_sha256"))
     throw input_error(manifest.at("scene_file").get<std::string>() + ": the scene changed since the sweep ran (sha256 differs)");
   fs::create_directories(out / "cells");
   for (const auto& d : dirs)
     for (const auto& e : fs::directory_iterator(fs::path(d) / "cells"))
-      if (e.path().extension() == ".json") fs::copy_file(e.path(), out / "cells" / e.path().filename(), fs::copy_options::overwrite_existing);
+      if (e.path().extension() == ".json") {  // whole or not at all, as every file written (kill -9 mid-copy)
+        std::ifstream in(e.path(), std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        compare::write_file_atomically(out / "cells" / e.path().filename(), text.str());
+      }
   compare::write_file_atomically(out / "sweep.json", manifest.dump(1) + "\n");
   // The units come from the manifest; their records carry everything else.
   std::vector<compare::Unit> units;
@@ -382,7 +401,7 @@ int list_scenes(const fs::path& dir) {
     if (e.path().extension() == ".json") files.push_back(e.path());
   std::sort(files.begin(), files.end());
   for (const auto& f : files) {
-    const auto s = core::load_scene(f);
+    const auto s = core::load_scene(f, limits);
     std::cout << f.string() << "\t" << s.name << "\t" << s.description << "\n";
   }
   return 0;
@@ -406,7 +425,11 @@ std::string precheck(int argc, char** argv, const CLI::App& app) {
   }
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (!arg.empty() && arg[0] == '-') continue;  // the global flags: -q, --help, --version
+    if (!arg.empty() && arg[0] == '-') {  // the global flags (-q, --help, --version) and options (--max-steps N)
+      const CLI::Option* o = arg.find('=') == std::string::npos ? app.get_option_no_throw(arg) : nullptr;
+      if (o != nullptr && o->get_items_expected_min() > 0) ++i;  // its value is not a command
+      continue;
+    }
     std::vector<std::string> names;
     for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
     if (std::find(names.begin(), names.end(), arg) != names.end()) return "";
@@ -425,6 +448,13 @@ int main(int argc, char** argv) {
   app.option_defaults()->always_capture_default();  // every default shown in --help
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+  // Budgets decided at load, before any work (core/budget.hpp): raise them for a scene that needs more.
+  app.add_option("--max-samples", limits.max_samples, "most output samples a scene may ask for (default 1e6)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-steps", limits.max_steps, "most solver or collision steps of one run (default 1e8)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-memory", limits.max_memory_mb, "most MB the samples of one run may take (default 4096)")
+      ->check(CLI::PositiveNumber);
   const auto backend_check = cli::one_of("backend", compare::backend_names());
   const auto repeat_check = cli::whole_number(1);
 
@@ -588,7 +618,7 @@ int main(int argc, char** argv) {
       spec.peer = !sw_no_peer;
       if (!sw_error.empty()) spec.error = compare::measure_from_string(sw_error);
       const auto shard = parse_shard(sw_shard);
-      const core::Scene scene = core::load_scene(sw_scene);
+      const core::Scene scene = core::load_scene(sw_scene, limits);
       if (spec.error && compare::body_only(*spec.error) && scene.bodies.empty())
         throw input_error("--error " + sw_error + ": the scene '" + scene.name + "' has no bodies");
       return run_sweep(scene, spec, sw_out, shard, quiet);

@@ -4,11 +4,19 @@
 #include "core/error.hpp"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <fcntl.h>
+#include <poll.h>
+#include <pthread.h>
+#include <spawn.h>
 #include <sstream>
+#include <sys/wait.h>
 #include <unistd.h>
+
+extern char** environ;
 
 namespace gacompare::compare {
 
@@ -28,19 +36,113 @@ std::string quoted(const std::string& s) {
   }
   return out + "'";
 }
+
+// Runs gnuplot on `script` (its standard input) and returns what it writes on
+// standard output. No shell, no file: a scene's text never meets a command
+// line, and a run killed while plotting leaves nothing in the temporary folder
+// (issue #16: it left gacompare_plot_PID folders). gnuplot -d reads no init
+// file, so what a user's ~/.gnuplot says changes nothing either. Throws
+// run_error with gnuplot's first line on stderr when it fails, and stops it
+// after kTimeoutSeconds.
+constexpr int kTimeoutSeconds = 120;
+
+std::string run_gnuplot(const std::string& script, const std::string& title) {
+  int in[2], out[2], err[2];
+  if (::pipe2(in, O_CLOEXEC) != 0 || ::pipe2(out, O_CLOEXEC) != 0 || ::pipe2(err, O_CLOEXEC) != 0)
+    throw run_error("plot '" + title + "': cannot make pipes for gnuplot: " + std::strerror(errno));
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, in[0], 0);
+  posix_spawn_file_actions_adddup2(&actions, out[1], 1);
+  posix_spawn_file_actions_adddup2(&actions, err[1], 2);
+  char name[] = "gnuplot", defaults[] = "-d";
+  char* argv[] = {name, defaults, nullptr};
+  pid_t pid = 0;
+  const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  for (int fd : {in[0], out[1], err[1]}) ::close(fd);
+  if (spawned != 0) {
+    for (int fd : {in[1], out[0], err[0]}) ::close(fd);
+    throw run_error("plot '" + title + "': cannot run gnuplot: " + std::strerror(spawned) +
+                    (spawned == ENOENT ? " (is it installed? scripts/install-deps.sh installs gnuplot-nox)" : ""));
+  }
+  // A gnuplot that stops reading must not kill us with SIGPIPE: blocked here,
+  // and a pending one taken back below.
+  sigset_t pipe_signal, old_mask;
+  sigemptyset(&pipe_signal);
+  sigaddset(&pipe_signal, SIGPIPE);
+  pthread_sigmask(SIG_BLOCK, &pipe_signal, &old_mask);
+  ::fcntl(in[1], F_SETFL, O_NONBLOCK);
+  std::string svg, messages;
+  std::size_t written = 0;
+  bool timed_out = false;
+  pollfd fds[3] = {{in[1], POLLOUT, 0}, {out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kTimeoutSeconds);
+  while (fds[0].fd >= 0 || fds[1].fd >= 0 || fds[2].fd >= 0) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      timed_out = true;
+      break;
+    }
+    if (::poll(fds, 3, static_cast<int>(left.count())) < 0 && errno != EINTR) break;
+    if (fds[0].fd >= 0 && fds[0].revents) {
+      const ssize_t n = (fds[0].revents & POLLOUT) ? ::write(in[1], script.data() + written, script.size() - written) : -1;
+      if (n > 0) written += static_cast<std::size_t>(n);
+      if (written == script.size() || (n < 0 && errno != EAGAIN && errno != EINTR)) ::close(in[1]), fds[0].fd = -1;
+    }
+    for (int k : {1, 2})
+      if (fds[k].fd >= 0 && fds[k].revents) {
+        char buffer[65536];
+        const ssize_t n = ::read(fds[k].fd, buffer, sizeof buffer);
+        if (n > 0) (k == 1 ? svg : messages).append(buffer, static_cast<std::size_t>(n));
+        else if (n == 0 || (errno != EINTR && errno != EAGAIN)) ::close(fds[k].fd), fds[k].fd = -1;
+      }
+  }
+  for (const auto& f : fds)
+    if (f.fd >= 0) ::close(f.fd);
+  if (timed_out) ::kill(pid, SIGKILL);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  const timespec zero{0, 0};
+  while (sigtimedwait(&pipe_signal, nullptr, &zero) > 0) {
+  }
+  pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
+  if (timed_out) throw run_error("plot '" + title + "': gnuplot did not finish in " + std::to_string(kTimeoutSeconds) + " s");
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || svg.find("</svg>") == std::string::npos) {
+    const auto first = messages.find_first_not_of(" \n");
+    const std::string line = first == std::string::npos ? "" : messages.substr(first, messages.find('\n', first) - first);
+    throw run_error("plot '" + title + "': gnuplot failed: " + (line.empty() ? "no SVG written" : line));
+  }
+  return svg;
+}
+
 }  // namespace
 
 void write_svg(const Plot& plot, const std::filesystem::path& file) { write_file_atomically(file, render_svg(plot)); }
 
+// The data go in the script as datablocks ($series0 << EOD ... EOD): numbers
+// only, written by us.
 std::string render_svg(const Plot& plot) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("gacompare_plot_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
   std::ostringstream script;
+  script.precision(17);
+  const auto has_errors = [](const Series& s) {
+    return s.lo.size() == s.x.size() && s.hi.size() == s.x.size() && !s.x.empty();
+  };
+  for (std::size_t i = 0; i < plot.series.size(); ++i) {
+    const Series& s = plot.series[i];
+    const bool errors = has_errors(s);
+    script << "$series" << i << " << EOD\n";
+    for (std::size_t k = 0; k < s.x.size(); ++k) {
+      script << s.x[k] << ' ' << s.y[k];
+      if (errors) script << ' ' << s.lo[k] << ' ' << s.hi[k];
+      script << '\n';
+    }
+    script << "EOD\n";
+  }
   // 1000 × 560 at 12 pt: drawn at the page's full width (report.html) the text
   // stays the size of the page's, and pasted into a paper's column it scales.
   script << "set terminal svg size 1000,560 dynamic enhanced font 'sans,12' background rgb 'white'\n"
-         << "set output " << quoted((dir / "plot.svg").string()) << "\n"
          << "set title " << quoted(plot.title) << " noenhanced\n"
          << "set xlabel " << quoted(plot.xlabel) << "\nset ylabel " << quoted(plot.ylabel) << "\n"
          << "set key outside right top\nset grid\n";
@@ -58,50 +160,25 @@ std::string render_svg(const Plot& plot) {
   script << "plot ";
   for (std::size_t i = 0; i < plot.series.size(); ++i) {
     const Series& s = plot.series[i];
-    const fs::path data = dir / ("series" + std::to_string(i) + ".dat");
-    const bool errors = s.lo.size() == s.x.size() && s.hi.size() == s.x.size() && !s.x.empty();
-    std::ofstream out(data);
-    out.precision(17);
-    for (std::size_t k = 0; k < s.x.size(); ++k) {
-      out << s.x[k] << ' ' << s.y[k];
-      if (errors) out << ' ' << s.lo[k] << ' ' << s.hi[k];
-      out << '\n';
-    }
+    const std::string data = "$series" + std::to_string(i);
     if (bars) {  // boxes side by side around each category, error bars over them
       const double width = 0.8 / static_cast<double>(plot.series.size());
       const double shift = (static_cast<double>(i) - 0.5 * static_cast<double>(plot.series.size() - 1)) * width;
-      script << (i ? ", " : "") << quoted(data.string()) << " using ($1+" << shift << "):2 with boxes title "
-             << quoted(s.title) << " noenhanced";
-      if (errors)
-        script << ", " << quoted(data.string()) << " using ($1+" << shift
-               << "):2:3:4 with yerrorbars lc rgb 'black' pt 0 ps 0 lw 1 notitle";
+      script << (i ? ", " : "") << data << " using ($1+" << shift << "):2 with boxes title " << quoted(s.title)
+             << " noenhanced";
+      if (has_errors(s))
+        script << ", " << data << " using ($1+" << shift << "):2:3:4 with yerrorbars lc rgb 'black' pt 0 ps 0 lw 1 notitle";
       continue;
     }
     // Markers only where points are few enough to read; a time series is a line.
     const bool markers = s.x.size() <= 60;
-    script << (i ? ", " : "") << quoted(data.string()) << " using 1:2 with " << (markers ? "linespoints" : "lines")
-           << " title " << quoted(s.title) << " noenhanced"
+    script << (i ? ", " : "") << data << " using 1:2 with " << (markers ? "linespoints" : "lines") << " title "
+           << quoted(s.title) << " noenhanced"
            << (s.highlight ? " lw 3 pt 7 ps 1.2" : markers ? " lw 1 pt " + std::to_string(1 + i % 12) : " lw 2")
            << (s.dashed ? " dt 2" : "");
   }
   script << "\n";
-  { std::ofstream(dir / "plot.gp") << script.str(); }
-  const std::string cmd = "gnuplot " + quoted((dir / "plot.gp").string()) + " 2> " + quoted((dir / "gnuplot.err").string());
-  const int rc = std::system(cmd.c_str());
-  std::error_code ec;
-  if (rc != 0 || !fs::exists(dir / "plot.svg", ec)) {
-    std::ifstream err(dir / "gnuplot.err");
-    std::string first;
-    std::getline(err, first);
-    fs::remove_all(dir, ec);
-    throw run_error("plot '" + plot.title + "': gnuplot failed" +
-                    (rc == 127 * 256 ? " (is it installed? scripts/install-deps.sh installs gnuplot-nox)" : ": " + first));
-  }
-  std::ifstream svg(dir / "plot.svg");
-  std::stringstream text;
-  text << svg.rdbuf();
-  fs::remove_all(dir, ec);
-  return text.str();
+  return run_gnuplot(script.str(), plot.title);
 }
 
 }  // namespace gacompare::compare

@@ -1,7 +1,8 @@
 #pragma once
 // Plots drawn by gnuplot (Debian's gnuplot-nox), not by hand: a series per line,
-// written to a temporary folder with a gnuplot script, rendered to SVG. Used for
-// the work-precision diagrams (what accuracy costs in time) and report figures.
+// given to gnuplot on a pipe with its script (no shell, no temporary file),
+// rendered to SVG. Used for the work-precision diagrams (what accuracy costs in
+// time) and report figures.
 #include <filesystem>
 #include <string>
 #include <vector>

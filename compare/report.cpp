@@ -2,6 +2,7 @@
 
 #include "compare/check.hpp"
 #include "compare/replay.hpp"
+#include "compare/files.hpp"
 #include "compare/results.hpp"
 #include "compare/sanity.hpp"
 #include "compare/stats.hpp"
@@ -386,7 +387,7 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
     const BackendResult* trad = find(r, "traditional");
     const BackendResult* cga = find(r, "cga");
     const bool compared = s.trajectories != Trajectories::not_compared;
-    o << "| [" << r.scene.name << "](" << r.scene.name << "/report.md) | " << to_string(s.category) << " | "
+    o << "| [" << r.scene.name << "](" << file_name_for(r.scene.name) << "/report.md) | " << to_string(s.category) << " | "
       << (trad ? time_cell(total_seconds(*trad)) : "–") << " | " << (cga ? time_cell(total_seconds(*cga)) : "–")
       << " | "
       << (!compared ? "–"
@@ -435,7 +436,7 @@ void write_reports(const std::filesystem::path& dir, const std::vector<SceneResu
     write_scene(dir, results.front());
     return;
   }
-  for (const auto& r : results) write_scene(dir / r.scene.name, r);
+  for (const auto& r : results) write_scene(dir / file_name_for(r.scene.name), r);
   write_file_atomically(dir / "stages.csv", stage_csv(results));
   std::vector<SceneSummary> scenes;
   for (const auto& r : results) scenes.push_back(summarise_scene(r, equal_accuracy > 0));

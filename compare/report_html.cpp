@@ -54,6 +54,12 @@ std::string inline_md(const std::string& text) {
       if (end != std::string::npos) {
         std::string href = s.substr(close + 2, end - close - 2);
         if (href.size() > 3 && href.compare(href.size() - 3, 3, ".md") == 0) href.replace(href.size() - 3, 3, ".html");
+        // Links are to the report's own files: a scheme (javascript:, a URL a
+        // scene's name or description smuggled in) stays text (issue #16).
+        if (href.find(':') != std::string::npos) {
+          out += s[i++];
+          continue;
+        }
         out += "<a href=\"" + href + "\">" + s.substr(i + 1, close - i - 1) + "</a>";
         i = end + 1;
         continue;

@@ -1,6 +1,7 @@
 #include "compare/sweep.hpp"
 
 #include "cga/backend.hpp"
+#include "compare/files.hpp"
 #include "compare/machine.hpp"
 #include "compare/metrics.hpp"
 #include "compare/plot.hpp"
@@ -449,10 +450,10 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
   }
   std::string figure;
   std::error_code gone;
-  std::filesystem::remove(dir / (scene.name + "_work_precision.svg"), gone);  // a stale one, drawn by another --error
+  std::filesystem::remove(dir / (file_name_for(scene.name) + "_work_precision.svg"), gone);  // a stale one, drawn by another --error
   if (!p.series.empty()) {
     figure = render_svg(p);
-    write_file_atomically(dir / (scene.name + "_work_precision.svg"), figure);
+    write_file_atomically(dir / (file_name_for(scene.name) + "_work_precision.svg"), figure);
     figure = "<figure>" + figure.substr(std::min(figure.size(), figure.find("<svg"))) + "</figure>\n";
   }
   write_file_atomically(dir / "sweep.html", html_page(scene.name + " — what accuracy costs in time",

@@ -10,11 +10,15 @@ extern "C" {
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
-#include <map>
 #include <numbers>
+#include <tuple>
+#include <unordered_map>
 #include <sstream>
 #include <utility>
 
@@ -51,11 +55,15 @@ constexpr double kCoplanar = 1e-9;
 // at the corner whose fan has the largest smallest triangle: a plain fan from
 // corner 0 makes zero-area triangles when that corner lies on the line of another
 // side, as Qhull's merged facets and polygons with collinear vertices allow.
+// Up to kFanStarts corners, spread evenly, are tried: every corner of a loop
+// of n would be n² work, and a facet of a large hull can have thousands.
+constexpr int kFanStarts = 32;
 void fan(const std::vector<Vec3>& v, const std::vector<int>& loop, std::vector<Triangle>& out) {
   const int n = static_cast<int>(loop.size());
+  const int stride = std::max(1, n / kFanStarts);
   int best = 0;
   double best_min = -1;
-  for (int s = 0; s < n; ++s) {
+  for (int s = 0; s < n; s += stride) {
     double m = INFINITY;
     for (int k = 1; k + 1 < n; ++k) {
       const Vec3& a = v[loop[s]];
@@ -76,7 +84,7 @@ Mesh convex_from_faces(std::string name, std::vector<Vec3> v, const std::vector<
     if (n.dot(v[loop[0]]) < 0) std::reverse(loop.begin(), loop.end());
     fan(v, loop, tris);
   }
-  return Mesh::from_triangles(std::move(name), std::move(v), std::move(tris));
+  return Mesh::from_triangles(std::move(name), std::move(v), std::move(tris)).as_convex();
 }
 
 }  // namespace
@@ -115,23 +123,41 @@ Mesh Mesh::from_triangles(std::string name, std::vector<Vec3> vertices, std::vec
 
   // Closed: each undirected edge in exactly two triangles. Oriented: those two use
   // it in opposite directions. Checked in that order so the message names the cause.
-  std::map<std::pair<int, int>, std::vector<std::pair<std::size_t, bool>>> edges;  // (lo,hi) -> (triangle, lo->hi?)
+  // Every use of an edge, sorted by (lo, hi, triangle): each run of equal
+  // (lo, hi) is one undirected edge, in the order a map of them would give.
+  struct Use {
+    int lo, hi, k;  // k: the triangle's edge from vertex k to k + 1
+    std::size_t t;
+    bool forward;   // the triangle runs it lo -> hi
+  };
+  std::vector<Use> uses;
+  uses.reserve(3 * triangles.size());
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) {
       const int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
-      edges[{std::min(a, b), std::max(a, b)}].push_back({t, a < b});
+      uses.push_back({std::min(a, b), std::max(a, b), k, t, a < b});
     }
-  for (const auto& [e, uses] : edges)
-    if (uses.size() != 2)
-      throw fail(std::string(uses.size() < 2 ? "not closed" : "not manifold") + ": edge (" + std::to_string(e.first) +
-                 ", " + std::to_string(e.second) + ") belongs to " +
-                 std::to_string(uses.size()) + " triangle(s), expected 2 (first: triangle " +
-                 std::to_string(uses[0].first) + ")");
-  for (const auto& [e, uses] : edges)
-    if (uses[0].second == uses[1].second)
-      throw fail("inconsistently oriented: triangles " + std::to_string(uses[0].first) + " and " +
-                 std::to_string(uses[1].first) + " both run edge " + std::to_string(uses[0].second ? e.first : e.second) +
-                 " -> " + std::to_string(uses[0].second ? e.second : e.first));
+  std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
+    return std::tie(x.lo, x.hi, x.t) < std::tie(y.lo, y.hi, y.t);
+  });
+  std::vector<std::size_t> run;  // where each edge's uses begin; run.back() == uses.size()
+  for (std::size_t i = 0; i < uses.size(); ++i)
+    if (i == 0 || uses[i].lo != uses[i - 1].lo || uses[i].hi != uses[i - 1].hi) run.push_back(i);
+  run.push_back(uses.size());
+  for (std::size_t r = 0; r + 1 < run.size(); ++r)
+    if (const std::size_t n = run[r + 1] - run[r]; n != 2) {
+      const Use& u = uses[run[r]];
+      throw fail(std::string(n < 2 ? "not closed" : "not manifold") + ": edge (" + std::to_string(u.lo) + ", " +
+                 std::to_string(u.hi) + ") belongs to " + std::to_string(n) +
+                 " triangle(s), expected 2 (first: triangle " + std::to_string(u.t) + ")");
+    }
+  for (std::size_t r = 0; r + 1 < run.size(); ++r) {
+    const Use &u0 = uses[run[r]], &u1 = uses[run[r] + 1];
+    if (u0.forward == u1.forward)
+      throw fail("inconsistently oriented: triangles " + std::to_string(u0.t) + " and " + std::to_string(u1.t) +
+                 " both run edge " + std::to_string(u0.forward ? u0.lo : u0.hi) + " -> " +
+                 std::to_string(u0.forward ? u0.hi : u0.lo));
+  }
 
   // Outward: the signed volume (divergence theorem, apex at the box centre to keep
   // the triple products small) is positive for outward normals.
@@ -146,50 +172,85 @@ Mesh Mesh::from_triangles(std::string name, std::vector<Vec3> vertices, std::vec
   m.normals_.reserve(triangles.size());
   for (const auto& [a, b, c] : triangles)
     m.normals_.push_back((vertices[b] - vertices[a]).cross(vertices[c] - vertices[a]).normalized());
+  // Each triangle joins the first plane (in the order planes were made) within
+  // kCoplanar of its normal and offset. Planes are filed in a grid of normals
+  // with cells 4 kCoplanar wide, so only the one to eight cells a match can be
+  // in are searched: linear in the triangles, where a scan of every plane made
+  // the hull of 10,000 points take seconds (issue #16).
   m.triangle_plane_.reserve(triangles.size());
+  std::unordered_map<std::uint64_t, std::vector<int>> grid;
+  constexpr double kCell = 4 * kCoplanar;
+  const auto index = [](double x) { return static_cast<std::int64_t>(std::floor(x / kCell)); };
+  const auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
+    const auto b = [](std::int64_t x) { return static_cast<std::uint64_t>(x) & 0x1fffff; };
+    return b(i) << 42 | b(j) << 21 | b(k);
+  };
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const Vec3& n = m.normals_[t];
     const double d = n.dot(vertices[triangles[t][0]]);
-    const auto it = std::find_if(m.planes_.begin(), m.planes_.end(), [&](const Plane& p) {
-      return (p.normal - n).norm() < kCoplanar && std::abs(p.offset - d) < kCoplanar * m.size_;
-    });
-    m.triangle_plane_.push_back(static_cast<int>(it - m.planes_.begin()));
-    if (it == m.planes_.end()) m.planes_.push_back({n, d});
+    int found = -1;
+    // A plane within kCoplanar of n lies in the cells that n ± kCoplanar touch.
+    for (auto i = index(n.x() - kCoplanar); i <= index(n.x() + kCoplanar); ++i)
+      for (auto j = index(n.y() - kCoplanar); j <= index(n.y() + kCoplanar); ++j)
+        for (auto k = index(n.z() - kCoplanar); k <= index(n.z() + kCoplanar); ++k) {
+          const auto it = grid.find(key(i, j, k));
+          if (it == grid.end()) continue;
+          for (int p : it->second)
+            if ((found < 0 || p < found) && (m.planes_[p].normal - n).norm() < kCoplanar &&
+                std::abs(m.planes_[p].offset - d) < kCoplanar * m.size_)
+              found = p;
+        }
+    if (found < 0) {
+      found = static_cast<int>(m.planes_.size());
+      m.planes_.push_back({n, d});
+      grid[key(index(n.x()), index(n.y()), index(n.z()))].push_back(found);
+    }
+    m.triangle_plane_.push_back(found);
   }
   m.triangle_edges_.assign(triangles.size(), {-1, -1, -1});
-  for (const auto& [e, uses] : edges) {
-    const int p0 = m.triangle_plane_[uses[0].first], p1 = m.triangle_plane_[uses[1].first];
+  for (std::size_t r = 0; r + 1 < run.size(); ++r) {
+    const Use &u0 = uses[run[r]], &u1 = uses[run[r] + 1];
+    const int p0 = m.triangle_plane_[u0.t], p1 = m.triangle_plane_[u1.t];
     if (p0 == p1) continue;  // a diagonal inside a polygonal face
     const int index = static_cast<int>(m.edges_.size());
-    m.edges_.push_back({e.first, e.second});
-    m.edge_planes_.push_back(uses[0].second ? std::array<int, 2>{p0, p1} : std::array<int, 2>{p1, p0});
-    for (const auto& use : uses)
-      for (int k = 0; k < 3; ++k) {
-        const std::size_t t = use.first;
-        const int u = triangles[t][k], v = triangles[t][(k + 1) % 3];
-        if (std::min(u, v) == e.first && std::max(u, v) == e.second) m.triangle_edges_[t][k] = index;
-      }
+    m.edges_.push_back({u0.lo, u0.hi});
+    m.edge_planes_.push_back(u0.forward ? std::array<int, 2>{p0, p1} : std::array<int, 2>{p1, p0});
+    m.triangle_edges_[u0.t][u0.k] = index;
+    m.triangle_edges_[u1.t][u1.k] = index;
   }
-  // Face loops: plane p0 of a feature edge runs it e0 -> e1, plane p1 the other way.
-  std::vector<std::map<int, int>> next(m.planes_.size());
-  std::vector<char> branching(m.planes_.size(), 0);
+  // Face loops: plane p0 of a feature edge runs it e0 -> e1, plane p1 the other
+  // way. The steps sorted by (plane, from) put each plane's together; a loop
+  // starts at its smallest vertex.
+  struct Step {
+    int plane, from, to;
+  };
+  std::vector<Step> steps;
+  steps.reserve(2 * m.edges_.size());
   for (std::size_t i = 0; i < m.edges_.size(); ++i) {
     const auto [e0, e1] = m.edges_[i];
     const auto [p0, p1] = m.edge_planes_[i];
-    branching[p0] |= !next[p0].emplace(e0, e1).second;
-    branching[p1] |= !next[p1].emplace(e1, e0).second;
+    steps.push_back({p0, e0, e1});
+    steps.push_back({p1, e1, e0});
   }
+  std::sort(steps.begin(), steps.end(),
+            [](const Step& a, const Step& b) { return std::tie(a.plane, a.from) < std::tie(b.plane, b.from); });
   m.faces_.resize(m.planes_.size());
-  for (std::size_t p = 0; p < m.planes_.size(); ++p) {
-    if (branching[p] || next[p].size() < 3) continue;
-    std::vector<int>& loop = m.faces_[p];
-    int v = next[p].begin()->first;
+  for (std::size_t begin = 0, end = 0; begin < steps.size(); begin = end) {
+    const int p = steps[begin].plane;
+    while (end < steps.size() && steps[end].plane == p) ++end;
+    const auto first = steps.begin() + static_cast<std::ptrdiff_t>(begin), last = steps.begin() + static_cast<std::ptrdiff_t>(end);
+    const std::size_t n = end - begin;
+    bool branching = false;
+    for (auto it = first; it + 1 < last; ++it) branching |= it->from == (it + 1)->from;
+    if (branching || n < 3) continue;
+    std::vector<int>& loop = m.faces_[static_cast<std::size_t>(p)];
+    int v = first->from;
     do {
       loop.push_back(v);
-      const auto it = next[p].find(v);
-      v = it == next[p].end() ? -1 : it->second;
-    } while (v >= 0 && v != loop.front() && loop.size() <= next[p].size());
-    if (v != loop.front() || loop.size() != next[p].size()) loop.clear();  // not one closed loop
+      const auto it = std::lower_bound(first, last, v, [](const Step& st, int x) { return st.from < x; });
+      v = it != last && it->from == v ? it->to : -1;
+    } while (v >= 0 && v != loop.front() && loop.size() <= n);
+    if (v != loop.front() || loop.size() != n) loop.clear();  // not one closed loop
   }
   // The edge graph, in compressed rows: vertex v's entries are
   // [neighbour_start_[v], neighbour_start_[v + 1]).
@@ -212,11 +273,25 @@ Mesh Mesh::from_triangles(std::string name, std::vector<Vec3> vertices, std::vec
   return m;
 }
 
+// A rigid motion keeps everything a valid mesh is, so nothing is checked or
+// merged again (that was the cost of a large hull, built once and moved to its
+// centre of mass). Normals and planes are computed from the moved vertices as
+// from_triangles computes them, each plane from its first triangle: the same
+// numbers, to the last bit, as building the moved mesh afresh.
 Mesh Mesh::transformed(const Eigen::Matrix3d& rotation, const Vec3& translation) const {
-  std::vector<Vec3> v;
-  v.reserve(vertices_.size());
-  for (const auto& p : vertices_) v.push_back(rotation * p + translation);
-  return from_triangles(name_, std::move(v), triangles_);
+  Mesh m = *this;
+  Eigen::AlignedBox3d box;
+  for (auto& p : m.vertices_) box.extend(p = rotation * p + translation);
+  m.size_ = box.diagonal().norm();
+  const auto& v = m.vertices_;
+  std::vector<char> placed(m.planes_.size(), 0);
+  for (std::size_t t = 0; t < m.triangles_.size(); ++t) {
+    const auto [a, b, c] = m.triangles_[t];
+    m.normals_[t] = (v[b] - v[a]).cross(v[c] - v[a]).normalized();
+    const auto p = static_cast<std::size_t>(m.triangle_plane_[t]);
+    if (!placed[p]) m.planes_[p] = {m.normals_[t], m.normals_[t].dot(v[a])}, placed[p] = 1;
+  }
+  return m;
 }
 
 // --- built-in shapes ------------------------------------------------------------------
@@ -301,12 +376,11 @@ Mesh convex_hull(const std::vector<Vec3>& points, const std::string& what) {
   std::vector<Vec3> verts;
   std::vector<Triangle> tris;
   if (code == 0) {
-    std::map<int, int> index;  // Qhull point id -> our vertex
+    std::vector<int> index(points.size(), -1);  // Qhull point id -> our vertex
     const auto id = [&](vertexT* vx) {
-      const int pid = qh_pointid(qh, vx->point);
-      auto [it, fresh] = index.try_emplace(pid, static_cast<int>(verts.size()));
-      if (fresh) verts.push_back(points[pid]);
-      return it->second;
+      const auto pid = static_cast<std::size_t>(qh_pointid(qh, vx->point));
+      if (index[pid] < 0) index[pid] = static_cast<int>(verts.size()), verts.push_back(points[pid]);
+      return index[pid];
     };
     facetT* facet;
     vertexT *vertex, **vertexp;
@@ -336,18 +410,72 @@ Mesh convex_hull(const std::vector<Vec3>& points, const std::string& what) {
     message = first == std::string::npos ? "" : message.substr(first, message.find('\n', first) - first);
     throw input_error(name + ": Qhull found no 3-d hull (error " + std::to_string(code) + ": " + message + ")");
   }
-  return Mesh::from_triangles(name, std::move(verts), std::move(tris));
+  return Mesh::from_triangles(name, std::move(verts), std::move(tris)).as_convex();
 }
 
 // --- OBJ (tinyobjloader) ----------------------------------------------------------
 
+namespace {
+// tinyobjloader reads a coordinate that is not a number as 0 (issue #16: a
+// typo silently moved a vertex to the origin), so the vertex lines are read
+// here first: "v x y z", optionally w or r g b after, every one a finite number.
+void check_vertex_lines(const std::string& text, const std::string& name) {
+  std::size_t line_no = 0;
+  for (std::size_t begin = 0; begin < text.size();) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    ++line_no;
+    std::string_view line(text.data() + begin, end - begin);
+    begin = end + 1;
+    const auto first = line.find_first_not_of(" \t");
+    if (first == std::string_view::npos || line.size() < first + 2 || line[first] != 'v' ||
+        (line[first + 1] != ' ' && line[first + 1] != '\t'))
+      continue;
+    std::vector<std::string_view> tokens;
+    for (std::size_t i = first + 1; i < line.size();) {
+      const auto a = line.find_first_not_of(" \t\r", i);
+      if (a == std::string_view::npos) break;
+      const auto b = std::min(line.size(), line.find_first_of(" \t\r", a));
+      tokens.push_back(line.substr(a, b - a));
+      i = b;
+    }
+    const auto where = name + ": line " + std::to_string(line_no) + ": ";
+    if (tokens.size() != 3 && tokens.size() != 4 && tokens.size() != 6 && tokens.size() != 7)
+      throw input_error(where + "expected a vertex \"v x y z\" (then w, or r g b), got " + std::to_string(tokens.size()) +
+                        " values");
+    for (auto t : tokens) {
+      const std::string_view digits = t.size() > 1 && t[0] == '+' ? t.substr(1) : t;
+      double x = 0;
+      const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), x);
+      if (ec != std::errc() || ptr != digits.data() + digits.size() || !std::isfinite(x))
+        throw input_error(where + "expected a finite number as a vertex coordinate, got '" +
+                          std::string(t.substr(0, 40)) + "'");
+    }
+  }
+}
+}  // namespace
+
 Mesh load_obj(const std::filesystem::path& file) {
   const std::string name = file.string();
+  std::FILE* f = std::fopen(name.c_str(), "rb");
+  if (!f) throw input_error(name + ": not a readable OBJ file: cannot open it: " + std::strerror(errno));
+  std::string text;
+  char buffer[65536];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) text.append(buffer, n);
+  const bool failed = std::ferror(f) != 0;
+  const int error = errno;
+  std::fclose(f);
+  if (failed) throw input_error(name + ": not a readable OBJ file: cannot read it: " + std::strerror(error));
+  return parse_obj(text, name);
+}
+
+Mesh parse_obj(const std::string& text, const std::string& name) {
+  check_vertex_lines(text, name);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(name, config)) {
+  if (!reader.ParseFromString(text, "", config)) {
     std::string why = reader.Error();
     while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
     std::replace(why.begin(), why.end(), '\n', ';');
@@ -388,8 +516,8 @@ Mesh mesh_for(const Shape& shape) {
     Mesh operator()(const PyramidShape& s) const { return make_pyramid(s.base, s.height); }
     Mesh operator()(const OctahedronShape& s) const { return make_octahedron(s.radius); }
     Mesh operator()(const IcosahedronShape& s) const { return make_icosahedron(s.radius); }
-    Mesh operator()(const HullShape& s) const { return convex_hull(s.points); }
-    Mesh operator()(const MeshShape& s) const { return load_obj(s.file); }
+    Mesh operator()(const HullShape& s) const { return s.mesh ? *s.mesh : convex_hull(s.points); }
+    Mesh operator()(const MeshShape& s) const { return s.mesh ? *s.mesh : load_obj(s.file); }
   };
   return std::visit(Build{}, shape);
 }
@@ -397,6 +525,7 @@ Mesh mesh_for(const Shape& shape) {
 // --- convexity ------------------------------------------------------------------------
 
 Convexity convexity(const Mesh& mesh) {
+  if (mesh.convex_by_construction()) return {};
   const double tol = 1e-6 * mesh.size();  // see mesh.hpp
   for (std::size_t p = 0; p < mesh.planes().size(); ++p) {
     const Plane& plane = mesh.planes()[p];

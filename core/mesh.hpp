@@ -82,6 +82,14 @@ class Mesh {
   // The same solid moved rigidly: x -> R x + t (R a rotation).
   Mesh transformed(const Eigen::Matrix3d& rotation, const Vec3& translation) const;
 
+  // Built convex: a built-in shape or a Qhull hull, convex to ~1e-15 x size,
+  // so convexity() need not test every vertex against every plane.
+  bool convex_by_construction() const { return convex_; }
+  Mesh as_convex() && {
+    convex_ = true;
+    return std::move(*this);
+  }
+
  private:
   Mesh() = default;  // only from_triangles makes one, so every Mesh is valid
   std::string name_;
@@ -96,6 +104,7 @@ class Mesh {
   std::vector<int> neighbour_start_, neighbours_, vertex_edges_;
   bool corners_only_ = false;
   double size_ = 0;
+  bool convex_ = false;
 };
 
 // --- the built-in shapes of the scene format (core/scene.hpp) --------------------
@@ -116,7 +125,11 @@ Mesh convex_hull(const std::vector<Vec3>& points, const std::string& what = "hul
 
 // A Wavefront OBJ file, by tinyobjloader (polygons triangulated; all groups
 // form one mesh; vertices used by no face dropped). Not recentred.
+// Every vertex line must hold finite numbers (tinyobjloader would read a
+// word as 0): refused naming the line.
 Mesh load_obj(const std::filesystem::path& file);
+// The same from text in memory; `name` is used in messages.
+Mesh parse_obj(const std::string& text, const std::string& name);
 
 // Any scene shape. Hull and mesh shapes keep their own coordinates: the caller
 // moves them so that the centre of mass (core/mass_properties.hpp) is the origin.

@@ -1,5 +1,8 @@
 #include "core/ode.hpp"
 
+#include <cmath>
+#include <sstream>
+
 namespace gacompare::core {
 
 bool is_adaptive(SolverMethod m) {
@@ -35,6 +38,27 @@ double OdeSolver::error_ratio(const std::vector<double>& y, const std::vector<do
     worst = std::max(worst, r);
   }
   return worst;
+}
+
+// Which component's error, against its tolerance, is the largest: the body or
+// particle the step size is waiting for.
+std::string OdeSolver::worst(const std::vector<double>& err) const {
+  std::size_t worst = 0;
+  double most = -1;
+  for (std::size_t i = 0; i < err.size(); ++i) {
+    const double scale = spec_.abs_tol + spec_.rel_tol * std::abs(out_[i]);
+    const double r = std::isfinite(err[i]) ? std::abs(err[i]) / scale : INFINITY;
+    if (r > most) most = r, worst = i;
+  }
+  return who_ && !err.empty() ? who_(worst) : "";
+}
+
+void OdeSolver::stop(const std::string& why, double t, double h, const std::vector<double>& err) const {
+  std::ostringstream msg;
+  msg << "integrate: " << why << ", at t=" << t << " (h=" << h << ")";
+  if (const std::string who = is_adaptive(spec_.method) ? worst(err) : ""; !who.empty())
+    msg << "; " << who << " has the largest error estimate";
+  throw run_error(msg.str());
 }
 
 void OdeSolver::record(double h) {

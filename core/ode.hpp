@@ -77,6 +77,15 @@ class OdeSolver {
   using ErrorNormFn = std::function<double(std::span<const double>, std::span<const double>, std::span<const double>)>;
   void set_error_norm(ErrorNormFn norm) { norm_ = std::move(norm); }
 
+  // Every loop makes progress or stops (issue #16): at most `steps` steps
+  // (accepted and rejected) in this solver's life, else run_error naming the
+  // time and, through `who` (component index -> "body 'cube'"), what holds the
+  // largest error of the last step. The scene's limits.max_steps by default.
+  using DescribeFn = std::function<std::string(std::size_t)>;
+  // At most 2^53: every count below it is exact in a double and converts to an integer.
+  void set_step_budget(double steps) { budget_ = std::min(steps, 0x1p53); }
+  void set_describe(DescribeFn who) { who_ = std::move(who); }
+
  private:
   template <class F> void eval(F& f, double t, std::span<const double> y, std::vector<double>& dy);
   template <class F> void rk4_step(F& f, double t, double h, const std::vector<double>& y, std::vector<double>& out);
@@ -85,9 +94,13 @@ class OdeSolver {
   double error_ratio(const std::vector<double>& y, const std::vector<double>& ynew,
                      const std::vector<double>& err) const;
   void record(double h);
+  [[noreturn]] void stop(const std::string& why, double t, double h, const std::vector<double>& y) const;
+  std::string worst(const std::vector<double>& y) const;
 
   SolverSpec spec_;
   ErrorNormFn norm_;
+  DescribeFn who_;
+  double budget_ = 1e8;
   double h_;  // adaptive: the step to try next
   SolverStats stats_;
   std::vector<int> velocity_of_;
@@ -190,6 +203,14 @@ void OdeSolver::advance(F&& f, double& t, double t_end, std::vector<double>& y, 
 
   if (!is_adaptive(spec_.method)) {
     const double steps = std::max(1.0, std::ceil(span / spec_.dt * (1 - 1e-12)));
+    // Counted before they are taken: a count past 2^64 (dt 1e-300) would
+    // convert to nothing, and the body would silently never move.
+    if (static_cast<double>(stats_.steps_accepted) + steps > budget_) {
+      std::ostringstream why;
+      why << "the fixed step needs " << steps << " more steps to t=" << t_end << ", past the budget of " << budget_
+          << " (--max-steps raises it)";
+      stop(why.str(), t, spec_.dt, y);
+    }
     const double h = span / steps;
     const double t0 = t;
     for (std::uint64_t k = 0; k < static_cast<std::uint64_t>(steps); ++k) {
@@ -213,6 +234,11 @@ void OdeSolver::advance(F&& f, double& t, double t_end, std::vector<double>& y, 
   // Both adaptive methods estimate the error of a 4th-order step: it scales as h^5.
   constexpr double order = 4.0;
   while (t < t_end) {
+    if (static_cast<double>(stats_.steps_accepted + stats_.steps_rejected) >= budget_) {
+      std::ostringstream why;
+      why << "the budget of " << budget_ << " steps is spent (--max-steps raises it)";
+      stop(why.str(), t, h_, err_);
+    }
     const bool last = t + h_ >= t_end;
     const double h = last ? t_end - t : h_;
     double ratio;
@@ -240,10 +266,10 @@ void OdeSolver::advance(F&& f, double& t, double t_end, std::vector<double>& y, 
       const double shrink = std::isfinite(ratio) ? std::max(0.2, 0.9 * std::pow(ratio, -1.0 / order)) : 0.2;
       h_ = h * shrink;
       if (!(h_ > 64 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t)))) {
-        std::ostringstream msg;
-        msg << "integrate: step size underflow at t=" << t << " (h=" << h_ << ", error ratio " << ratio
+        std::ostringstream why;
+        why << "step size underflow (error ratio " << ratio
             << "): the tolerance cannot be met or the derivative is not finite";
-        throw run_error(msg.str());
+        stop(why.str(), t, h_, err_);
       }
     }
   }

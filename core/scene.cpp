@@ -18,7 +18,9 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "core/budget.hpp"
 #include "core/error.hpp"
+#include "core/mesh.hpp"
 #include "core/sha256.hpp"
 
 namespace gacompare::core {
@@ -302,6 +304,28 @@ Vec3 vec3(const Val& v, Range r = Range::any) {
   return {number(v.at(0), r), number(v.at(1), r), number(v.at(2), r)};
 }
 
+// A size: between a proton and the observable universe (core/budget.hpp).
+double length(const Val& v) {
+  const double x = number(v, Range::positive);
+  if (x < kMinLength || x > kMaxLength)
+    v.expected("a length in [1e-15, 1e26] m (a proton's radius to the observable universe's)");
+  return x;
+}
+
+Vec3 lengths(const Val& v) {
+  array_of(v, 3, "an array of 3 numbers > 0");
+  return {length(v.at(0)), length(v.at(1)), length(v.at(2))};
+}
+
+// A point of a shape: no farther out than the observable universe, so that its
+// products (Qhull's, the mass properties') stay finite.
+Vec3 shape_point(const Val& v) {
+  const Vec3 p = vec3(v);
+  if (!(p.cwiseAbs().maxCoeff() <= kMaxLength))
+    v.expected("a point within 1e26 m of the shape's origin (the observable universe's radius)");
+  return p;
+}
+
 Eigen::Vector4d quaternion(const Val& v) {
   array_of(v, 4, "a unit quaternion [w, x, y, z]");
   Eigen::Vector4d q(number(v.at(0)), number(v.at(1)), number(v.at(2)), number(v.at(3)));
@@ -358,7 +382,7 @@ using Keys = std::array<std::string_view, N>;
 // ---- the loader ------------------------------------------------------------------------
 class Loader {
  public:
-  explicit Loader(const Ctx& ctx) : ctx_(ctx) {}
+  explicit Loader(const Ctx& ctx, const Limits& limits = {}) : ctx_(ctx), limits_(limits) {}
 
   Scene scene(const json& root) {
     static constexpr Keys<13> keys = {"name",      "description", "duration",          "output",
@@ -386,12 +410,8 @@ class Loader {
     const Val every = out.req("every");
     s.output_every = number(every, Range::positive);
     if (s.output_every > s.duration) every.expected("a number > 0 and <= duration (" + fmt(s.duration) + ")");
-    // Every sample is kept in memory and written out: a bound on their number
-    // turns a typo (every: 1e-300, duration: 1e308) into this line instead of
-    // an overflowing count or a machine out of memory (issue #16).
-    if (s.duration / s.output_every > kMaxSamples)
-      every.expected("an interval giving at most " + fmt(kMaxSamples) + " samples (duration / every = " +
-                     fmt(s.duration / s.output_every) + ")");
+    // How many samples that is, and what they cost, is checked with the other
+    // budgets once the whole scene is read (core/budget.hpp).
     s.solver = solver(o.req("solver"));
     if (auto c = o.opt("constraint_solver")) s.constraint_solver = constraint_solver(*c);
     if (auto c = o.opt("rigid_body")) s.rigid_body = rigid_body(*c);
@@ -401,6 +421,16 @@ class Loader {
     each(o.opt("generators"), [&](const Val& v) { s.generators.push_back(generator(v)); });
     each(o.opt("effects"), [&](const Val& v) { s.effects.push_back(effect(v)); });  // after the bodies they name
     each(o.opt("constraints"), [&](const Val& v) { s.constraints.push_back(constraint(v, s)); });
+    if (s.find_effect<Collisions>())  // §2.4.2: the narrowphase is for convex bodies
+      for (std::size_t i = 0; i < s.bodies.size(); ++i)
+        if (const Convexity c = convexity(mesh_for(s.bodies[i].shape)); !c.convex)
+          fail_at(ctx_, "/bodies/" + std::to_string(i) + "/shape",
+                  "expected a convex body, as the collisions effect needs (§2.4.2), got one that is " + c.reason);
+    // Before any work: magnitudes no physics means, then what the run would take.
+    s.limits = limits_;
+    if (const auto r = over_sample_budget(s)) fail_at(ctx_, r->path, r->what);
+    if (const auto r = physically_absurd(s)) fail_at(ctx_, r->path, r->what);
+    if (const auto r = over_step_budget(s)) fail_at(ctx_, r->path, r->what);
     return s;
   }
 
@@ -641,21 +671,22 @@ class Loader {
 
   // The value of one shape key.
   Shape shape_value(const std::string& key, const Val& x) {
-    if (key == "box") return BoxShape{vec3(x, Range::positive)};
-    if (key == "tetrahedron") return TetrahedronShape{number(x, Range::positive)};
-    if (key == "octahedron") return OctahedronShape{number(x, Range::positive)};
-    if (key == "icosahedron") return IcosahedronShape{number(x, Range::positive)};
+    if (key == "box") return BoxShape{lengths(x)};
+    if (key == "tetrahedron") return TetrahedronShape{length(x)};
+    if (key == "octahedron") return OctahedronShape{length(x)};
+    if (key == "icosahedron") return IcosahedronShape{length(x)};
     if (key == "pyramid") {
       static constexpr Keys<2> keys = {"base", "height"};
       Obj p(x, keys, "an object {\"base\": b, \"height\": h}");
-      return PyramidShape{number(p.req("base"), Range::positive), number(p.req("height"), Range::positive)};
+      return PyramidShape{length(p.req("base")), length(p.req("height"))};
     }
     if (key == "hull") {
       const std::string hull_what = "an array of at least 4 points [x, y, z], not all in one plane";
       if (!x.j->is_array() || x.j->size() < 4) x.expected(hull_what);
       HullShape h;
-      for (std::size_t i = 0; i < x.j->size(); ++i) h.points.push_back(vec3(x.at(i)));
+      for (std::size_t i = 0; i < x.j->size(); ++i) h.points.push_back(shape_point(x.at(i)));
       if (!spans_volume(h.points)) x.fail("expected " + hull_what + ", got points that span no volume");
+      h.mesh = built(x, [&] { return convex_hull(h.points); });
       return h;
     }
     const Val& m = x;
@@ -665,7 +696,18 @@ class Loader {
     if (!fs::is_regular_file(resolved, ec))
       m.fail("expected the path of an existing mesh file, relative to the scene's folder, got " + quote(rel) +
              " (resolved to " + quote(resolved.string()) + ", where there is no such file)");
-    return MeshShape{resolved};
+    return MeshShape{resolved, built(m, [&] { return load_obj(resolved); })};
+  }
+
+  // A hull or mesh built once, here, so that what is wrong with it is named at
+  // its JSON path (the mesh's own message follows).
+  template <class Build>
+  std::shared_ptr<const Mesh> built(const Val& v, Build&& build) {
+    try {
+      return std::make_shared<const Mesh>(build());
+    } catch (const Error& e) {
+      v.fail(e.what());
+    }
   }
 
   Generator generator(const Val& v) {
@@ -826,6 +868,7 @@ class Loader {
     std::string path;
   };
   const Ctx& ctx_;
+  Limits limits_;
   std::map<std::string, Named> names_;
   std::map<std::string, std::string> effect_paths_;  // effect type -> where it was first given
 };
@@ -858,16 +901,17 @@ json parse_json(const std::string& text, const Ctx& ctx) {
         stack.push_back(Frame{true, 0, {}, {}});
         break;
       case json::parse_event_t::key: {
-        std::string path;
-        for (std::size_t i = 0; i + 1 < stack.size(); ++i) {
-          path += '/';
-          path += stack[i].array ? std::to_string(stack[i].index) : token(stack[i].key);
-        }
         Frame& f = stack.back();
         f.key = parsed.get<std::string>();
-        if (!f.keys.insert(f.key).second)
-          fail_at(ctx, path + "/" + token(f.key), "expected each key at most once per object, got it twice");
-        break;
+        if (f.keys.insert(f.key).second) break;
+        // The path is built only for the message: building it at every key
+        // made 1e5 nested objects take minutes (issue #16).
+        std::string path;
+        for (const Frame& outer : stack) {
+          path += '/';
+          path += outer.array ? std::to_string(outer.index) : token(outer.key);
+        }
+        fail_at(ctx, path, "expected each key at most once per object, got it twice");
       }
       case json::parse_event_t::object_end:
       case json::parse_event_t::array_end:
@@ -904,10 +948,10 @@ json parse_json(const std::string& text, const Ctx& ctx) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::filesystem::path& file) {
+Scene parse_scene(const std::string& text, const std::filesystem::path& file, const Limits& limits) {
   const Ctx ctx{file.string(), file.parent_path()};
   const json root = parse_json(text, ctx);
-  Scene s = Loader(ctx).scene(root);
+  Scene s = Loader(ctx, limits).scene(root);
   s.file = file;
   s.sha256 = sha256_hex(text);
   return s;
@@ -939,7 +983,9 @@ std::string read_text(const std::filesystem::path& file, const std::string& what
 }
 }  // namespace
 
-Scene load_scene(const std::filesystem::path& file) { return parse_scene(read_text(file, "scene file"), file); }
+Scene load_scene(const std::filesystem::path& file, const Limits& limits) {
+  return parse_scene(read_text(file, "scene file"), file, limits);
+}
 
 std::vector<CollisionCaseSpec> load_collision_cases(const std::filesystem::path& file) {
   return parse_collision_cases(read_text(file, "collision case file"), file);

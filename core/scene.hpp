@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -140,13 +141,16 @@ struct ConstraintSolverSpec {
 };
 
 // --- shapes --------------------------------------------------------------------------
+class Mesh;  // core/mesh.hpp
 struct BoxShape { Vec3 size{1, 1, 1}; };                   // full side lengths
 struct TetrahedronShape { double edge = 1; };
 struct PyramidShape { double base = 1; double height = 1; };  // square base, apex above
 struct OctahedronShape { double radius = 1; };             // centre to vertex
 struct IcosahedronShape { double radius = 1; };            // centre to vertex
-struct HullShape { std::vector<Vec3> points; };
-struct MeshShape { std::filesystem::path file; };          // resolved against the scene file's folder
+// Hulls and OBJ meshes are built once, by the loader (which checks them and
+// names the JSON path of a bad one); mesh_for() hands out that mesh.
+struct HullShape { std::vector<Vec3> points; std::shared_ptr<const Mesh> mesh = nullptr; };
+struct MeshShape { std::filesystem::path file; std::shared_ptr<const Mesh> mesh = nullptr; };  // resolved against the scene file's folder
 using Shape = std::variant<BoxShape, TetrahedronShape, PyramidShape, OctahedronShape,
                            IcosahedronShape, HullShape, MeshShape>;
 
@@ -201,9 +205,18 @@ struct CheckSpec {
   std::optional<double> max_rotation_drift;        // ‖RᵀR − I‖, |qq* − 1|, |RR̃ − 1|
 };
 
-// The most output samples a scene may ask for (duration / output.every): a
-// million samples of a few bodies are already hundreds of megabytes of results.
+// The most output samples a scene may ask for by default (duration /
+// output.every): a million samples of a few bodies are already hundreds of
+// megabytes of results.
 inline constexpr double kMaxSamples = 1e6;
+
+// What a scene may ask of a run (core/budget.hpp): checked at load, before any
+// work; the command line's --max-samples, --max-steps and --max-memory raise them.
+struct Limits {
+  double max_samples = kMaxSamples;  // output samples, duration / output.every
+  double max_steps = 1e8;            // solver steps of one run (fixed-step count, collision steps; adaptive: at run time)
+  double max_memory_mb = 4096;       // the recorded samples of one backend's run, MB
+};
 
 struct Scene {
   std::string name;
@@ -221,6 +234,7 @@ struct Scene {
   std::vector<Constraint> constraints;
   std::vector<Body> bodies;
   std::vector<Generator> generators;
+  Limits limits;  // what it was loaded under; the solver's step budget at run time
 
   template <class T> const T* find_effect() const {
     for (const auto& e : effects)
@@ -231,11 +245,12 @@ struct Scene {
 
 // Loads and validates a scene. Throws gacompare::Error (ErrorKind::input) with one
 // line "FILE: JSON/PATH: what was expected" on malformed JSON, an unknown key, a
-// wrong type, a missing field, a value out of range, a duplicate name or an
-// unknown reference.
-Scene load_scene(const std::filesystem::path& file);
+// wrong type, a missing field, a value out of range, a duplicate name, an
+// unknown reference, a bad mesh, a magnitude no physics means, or a demand
+// over `limits` (core/budget.hpp).
+Scene load_scene(const std::filesystem::path& file, const Limits& limits = {});
 // Same, from text already in memory; `file` is used in messages and to resolve meshes.
-Scene parse_scene(const std::string& text, const std::filesystem::path& file);
+Scene parse_scene(const std::string& text, const std::filesystem::path& file, const Limits& limits = {});
 
 // Collision cases (`gacompare collide`, issue #6): a JSON array of pairs
 //   {"name": "...", "a": BODY, "b": BODY}      ("name" optional: "case N")

@@ -32,6 +32,23 @@ void check_implemented(const Scene& scene) {
     throw input_error(scene.file.string() + ": the scene has nothing to simulate (no particles, no bodies)");
 }
 
+Error located(const Scene& scene, const Error& e) {
+  const std::string what = e.what(), file = scene.file.string();
+  if (file.empty() || what.rfind(file, 0) == 0) return e;
+  std::string where = file + ": ";
+  for (const std::string lead : {"body '", "bodies '"})
+    if (what.rfind(lead, 0) == 0) {
+      const auto end = what.find('\'', lead.size());
+      const std::string name = what.substr(lead.size(), end - lead.size());
+      for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+        if (scene.bodies[i].name == name) {
+          where += "/bodies/" + std::to_string(i) + ": ";
+          break;
+        }
+    }
+  return Error(e.kind(), where + what);
+}
+
 std::vector<int> particle_layout(std::size_t particles) {
   std::vector<int> v(6 * particles, -1);
   for (std::size_t i = 0; i < particles; ++i)

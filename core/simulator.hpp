@@ -56,6 +56,12 @@ std::string first_nonfinite(std::span<const double> y, std::size_t stride, const
 // simulate yet (and the issue that adds it): never a silent partial simulation.
 void check_implemented(const Scene& scene);
 
+// An error from building a backend's model ("bodies 'a' and 'b' overlap at
+// t = 0 ...") with the scene file and the JSON path of the first body it
+// names in front, as the loader's own errors have them; unchanged when it
+// names the file already.
+Error located(const Scene& scene, const Error& e);
+
 // velocity_of for a state of particles [x (3), v (3)] each.
 std::vector<int> particle_layout(std::size_t particles);
 
@@ -70,6 +76,14 @@ OdeSolver solver_for(const Scene& scene, const typename B::Model& model, std::si
   solver.set_error_norm([&scene, &model](std::span<const double> y0, std::span<const double> y1,
                                          std::span<const double> err) {
     return B::error_ratio(model, scene.solver, y0, y1, err);
+  });
+  solver.set_step_budget(scene.limits.max_steps);
+  // Component i's owner, by the backend's own naming of a non-finite state
+  // (only asked once a run has failed).
+  solver.set_describe([&model, n](std::size_t i) {
+    std::vector<double> y(n, 0.0);
+    y[i] = NAN;
+    return B::first_nonfinite(model, y);
   });
   return solver;
 }
@@ -119,7 +133,13 @@ Run simulate(const Scene& scene) {
   Run run;
   run.backend = std::string(B::name);
   check_implemented(scene);
-  const auto model = B::build(scene);
+  const auto model = [&] {
+    try {
+      return B::build(scene);
+    } catch (const Error& e) {
+      throw located(scene, e);
+    }
+  }();
   std::vector<double> y(B::state_size(model));
   B::initial_state(model, y);
   OdeSolver solver = solver_for<B>(scene, model, y.size());
@@ -145,7 +165,14 @@ Run simulate(const Scene& scene) {
     try {
       B::advance(model, solver, f, t, times[k], y, run.profile, after);
     } catch (const Error& e) {
+      // Every stop names its time; those that cannot (the constraint solve)
+      // get the output interval they stopped in.
       run.error = std::string(e.what());
+      if (run.error->find("t=") == std::string::npos) {
+        std::ostringstream when;
+        when << ", between t=" << times[k - 1] << " and t=" << times[k];
+        *run.error += when.str();
+      }
       break;
     }
     if (auto bad = B::first_nonfinite(model, y); !bad.empty()) {

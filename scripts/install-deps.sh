@@ -17,6 +17,7 @@ packages=(
   libboost-dev             # Boost.Odeint: the peer our solvers are checked and timed against
   python3                  # scripts/bench-ratios.py (README tables)
   gnuplot-nox              # plots: work-precision diagrams, report figures
+  clang libclang-rt-dev    # the libFuzzer targets (scripts/fuzz.sh): clang with its fuzzer and sanitizer runtimes
   chromium                 # the harness test renders report.html headless
   libjs-three              # three.js (non-module build), inlined into replay.html
 )

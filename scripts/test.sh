@@ -2,8 +2,22 @@
 # The test command: installs what is missing, builds (warnings are errors), runs
 # every test, then the regression check of the bundled scenes against their
 # stored baselines (data/reference). Extra arguments go to ctest, e.g. `-L algebra`.
+#
+# With --ci first (what CI runs, .ci/run): then also a 60 s fuzz run of the
+# scene loader and the OBJ reader (scripts/fuzz.sh) and the whole suite again
+# built with AddressSanitizer + UBSan (the asan preset).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+ci=0
+if [ "${1:-}" = "--ci" ]; then
+  ci=1
+  shift
+fi
 bash scripts/build.sh ci
 ctest --preset ci -j2 "$@"
 build/ci/compare/gacompare check data/scenes/*.json --baseline data/reference --quiet
+if [ "$ci" = 1 ]; then
+  bash scripts/fuzz.sh --seconds 60
+  bash scripts/build.sh asan
+  ctest --preset asan -j2 "$@"
+fi

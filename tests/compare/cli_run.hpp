@@ -35,7 +35,7 @@ const fs::path& scratch() {
 }
 
 // Runs gacompare with `args`; stdout and stderr captured separately.
-Result gacompare(const std::string& args) {
+[[maybe_unused]] Result gacompare(const std::string& args) {
   const fs::path dir = scratch();
   fs::create_directories(dir);
   const std::string cmd = std::string(GACOMPARE_BIN) + " " + args + " >" + (dir / "out").string() + " 2>" +
@@ -50,13 +50,13 @@ Result gacompare(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out"), slurp(dir / "err")};
 }
 
-fs::path fresh_dir(const std::string& name) {
+[[maybe_unused]] fs::path fresh_dir(const std::string& name) {
   const fs::path d = scratch() / name;
   fs::remove_all(d);
   return d;
 }
 
-json read_json(const fs::path& p) {
+[[maybe_unused]] json read_json(const fs::path& p) {
   std::ifstream in(p);
   return json::parse(in);
 }

@@ -314,6 +314,83 @@ TEST(Mesh, NonConvexMeshIsValidButFlagged) {
   EXPECT_NEAR(mass_properties(dented).volume, 8 - 4 * 0.5 / 3, 1e-14);
 }
 
+// transformed() moves a mesh without rebuilding it (issue #16: rebuilding a
+// large hull was its cost): its normals, planes and size are, to the last bit,
+// what building the moved vertices afresh gives.
+TEST(Mesh, TransformedIsTheMovedMeshBuiltAfresh) {
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> g;
+  std::vector<Vec3> pts(300);
+  for (auto& p : pts) p = Vec3(g(rng), g(rng), g(rng));
+  const Mesh hull = convex_hull(pts);
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.4, Vec3(1, -1, 2).normalized()).toRotationMatrix();
+  const Vec3 t(0.3, -7, 1e3);
+  const Mesh moved = hull.transformed(r, t);
+  std::vector<Vec3> v;
+  for (const auto& p : hull.vertices()) v.push_back(r * p + t);
+  const Mesh fresh = Mesh::from_triangles(hull.name(), v, hull.triangles());
+  EXPECT_EQ(moved.size(), fresh.size());
+  ASSERT_EQ(moved.planes().size(), fresh.planes().size());
+  for (std::size_t p = 0; p < fresh.planes().size(); ++p) {
+    EXPECT_EQ(moved.planes()[p].normal, fresh.planes()[p].normal) << p;
+    EXPECT_EQ(moved.planes()[p].offset, fresh.planes()[p].offset) << p;
+  }
+  EXPECT_EQ(moved.normals(), fresh.normals());
+  EXPECT_EQ(moved.triangle_plane(), fresh.triangle_plane());
+  EXPECT_EQ(moved.edges(), fresh.edges());
+  EXPECT_EQ(moved.faces(), fresh.faces());
+}
+
+// The planes found through the grid of normals are the planes of the rule
+// itself, done by brute force: each triangle joins the first plane made whose
+// normal and offset are within 1e-9 (and 1e-9 x size) of its own.
+TEST(Mesh, PlanesAreTheFirstCoplanarMatch) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> g;
+  std::vector<Vec3> pts(2000);
+  for (auto& p : pts) p = Vec3(g(rng), g(rng), g(rng)).normalized();  // many nearly coplanar facets
+  for (int i = 0; i < 8; ++i) pts.emplace_back(i & 1 ? 0.6 : -0.6, i & 2 ? 0.6 : -0.6, i & 4 ? 0.6 : -0.6);
+  const Mesh m = convex_hull(pts);
+  std::vector<Plane> planes;
+  for (std::size_t t = 0; t < m.triangles().size(); ++t) {
+    const Vec3& n = m.normals()[t];
+    const double d = n.dot(m.vertices()[m.triangles()[t][0]]);
+    std::size_t p = 0;
+    while (p < planes.size() && !((planes[p].normal - n).norm() < 1e-9 && std::abs(planes[p].offset - d) < 1e-9 * m.size())) ++p;
+    if (p == planes.size()) planes.push_back({n, d});
+    EXPECT_EQ(m.triangle_plane()[t], static_cast<int>(p)) << t;
+  }
+  EXPECT_EQ(m.planes().size(), planes.size());
+}
+
+// A facet of hundreds of corners (a prism over a 300-gon, whose caps Qhull
+// merges into one facet each) is triangulated without zero-area triangles
+// and in bounded time: its volume is the prism's, area x height.
+TEST(Mesh, AHullWithLargeFacetsIsValid) {
+  const int n = 300;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < n; ++i)
+    for (double z : {0.0, 0.5}) pts.emplace_back(std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), z);
+  const Mesh prism = convex_hull(pts);
+  const double area = 0.5 * n * std::sin(2 * M_PI / n);
+  EXPECT_NEAR(mass_properties(prism).volume, area * 0.5, 1e-12);
+  std::size_t largest = 0;
+  for (const auto& f : prism.faces()) largest = std::max(largest, f.size());
+  EXPECT_EQ(largest, static_cast<std::size_t>(n));
+}
+
+// A vertex coordinate that is not a finite number is refused naming its line
+// (tinyobjloader alone reads it as 0).
+TEST(Mesh, ObjVertexCoordinatesMustBeFiniteNumbers) {
+  const std::string faces = "f 1 3 2\nf 1 4 3\nf 1 2 4\nf 2 3 4\n";
+  EXPECT_EQ(parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n" + faces, "t.obj").vertices().size(), 4u);
+  for (const std::string bad : {"x", "1e999", "nan", "0x", "1,5"}) {
+    const std::string m = input_error_of([&] { parse_obj("v 0 0 0\nv 1 0 0\n# c\nv 0 " + bad + " 0\nv 0 0 1\n" + faces, "t.obj"); });
+    EXPECT_EQ(m, "t.obj: line 4: expected a finite number as a vertex coordinate, got '" + bad + "'");
+  }
+  EXPECT_NE(input_error_of([&] { parse_obj("v 0 0\n" + faces, "t.obj"); }).find("t.obj: line 1: expected a vertex"), std::string::npos);
+}
+
 TEST(Mesh, TransformedMovesEveryVertex) {
   const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   const Mesh a = make_icosahedron(1), b = a.transformed(r, {1, -2, 3});

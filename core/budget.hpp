@@ -1,0 +1,65 @@
+#pragma once
+// What a scene asks of a run, decided at load before any work (issue #16): a
+// scene file from someone else's repository must end with results or a clear
+// reason, never a hang, a crash or a machine out of memory. Two kinds of check:
+//
+// Budgets (raised by the command line's --max-samples, --max-steps,
+// --max-memory): output samples (duration / output.every), solver and
+// collision steps (duration / the smallest step a fixed-step solver or the
+// collision loop may take), and the memory the recorded samples take.
+//
+// Physical bounds (not raised by any flag): magnitudes at which Newtonian
+// rigid-body mechanics in double precision stops meaning anything, so that
+// every step would be non-finite or infinitely small: speeds above the speed
+// of light (given, reached by a rim turning at the given angular velocity, or
+// reached within the scene's duration under its gravity or applied forces),
+// lengths beyond the observable universe or below a proton, masses below an
+// electron or above the observable universe.
+//
+// Every refusal names the JSON path whose value is to blame and the numbers.
+#include "core/scene.hpp"
+
+#include <optional>
+#include <string>
+
+namespace gacompare::core {
+
+inline constexpr double kSpeedOfLight = 299'792'458.0;  // m/s
+inline constexpr double kMaxLength = 1e26;  // m: the observable universe's radius is 4.4e26 m
+inline constexpr double kMinLength = 1e-15; // m: a proton's radius is 8.4e-16 m
+inline constexpr double kMinMass = 1e-31;   // kg: an electron is 9.1e-31 kg
+inline constexpr double kMaxMass = 1e53;    // kg: the observable universe's ordinary matter, 1.5e53 kg
+
+// Peak memory of one backend's run per recorded sample and entity: the samples,
+// their results.json tree and its text, measured as the peak resident size of
+// `gacompare run` on hanging_net (64 particles) and bodies_in_box (27 bodies)
+// at 200 and 2000 samples (1.5 kB and 2.8 kB), rounded up.
+inline constexpr double kBytesPerParticleSample = 1600;
+inline constexpr double kBytesPerBodySample = 3000;
+
+// The first refusal found, as a JSON path and what is wrong there.
+struct Refusal {
+  std::string path;
+  std::string what;
+};
+
+// Samples and their memory against `scene.limits`.
+std::optional<Refusal> over_sample_budget(const Scene& scene);
+// Fixed-step and collision steps against `scene.limits`: a body's inradius
+// bounds the collision step, so every body's mesh must be built (the loader
+// builds them). After physically_absurd, whose bounds keep these numbers finite.
+std::optional<Refusal> over_step_budget(const Scene& scene);
+
+// The physical bounds above.
+std::optional<Refusal> physically_absurd(const Scene& scene);
+
+// Each body's length scales, from its mesh about its centre of mass.
+struct BodyScale {
+  double radius = 0;    // farthest vertex from the centre of mass
+  double inradius = 0;  // nearest face plane (convex bodies; 0 when the centre is outside one)
+  double volume = 0;
+  double mass = 0;      // given, or density x volume
+};
+BodyScale body_scale(const Body& body);
+
+}  // namespace gacompare::core
