@@ -295,7 +295,8 @@ struct Collider {
                                                                        : collision::Method::sat_then_manifold;
     ++detection_;
     if (world.data() == setup.everyone.data()) hints_.next();  // the world's detection: a new round of pairs
-    for (auto [i, j] : pairs) {
+    for (const auto& pair : pairs) {
+      int i = pair.first, j = pair.second;  // plain ints: lambdas below capture them (clang 14 cannot capture a binding)
       if (setup.is_static[world[i]] && setup.is_static[world[j]]) continue;
       if (world[i] > world[j]) std::swap(i, j);  // a < b in the world: every group sees a pair the same way
       ++counters.narrowphase_pairs;
@@ -347,7 +348,8 @@ struct Collider {
     double g = -INFINITY;
     ++detection_;
     Shape own_a, own_b;  // without reuse: each pair's own
-    for (const auto& [i, j] : pairs) {  // few pairs, each body in one or two: their poses only
+    for (const auto& pair : pairs) {  // few pairs, each body in one or two: their poses only
+      const int i = pair.first, j = pair.second;
       const bool reuse = setup.settings.reuse;
       const int wa = world[i], wb = world[j];
       if (!reuse) {
