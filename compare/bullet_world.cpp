@@ -68,9 +68,10 @@
 //     (CF_HAS_FRICTION_ANCHOR, off by default) would keep a contact point where
 //     it was made; without it points are refreshed each step. Bullet integrates
 //     positions after the contact solve (semi-implicit Euler: v += g h, solve,
-//     x += v h), so a held body does not creep, but a sliding body's position
-//     lags the exact ½ a t² by ½ a h t (ours integrates first and displaces
-//     resting contacts by ½ h Δv, core/collisions.hpp friction_displacement).
+//     x += v h): no creep of our kind (ours integrates first and displaces
+//     resting contacts by ½ h Δv, core/collisions.hpp friction_displacement),
+//     but positions ½ a h t off the exact parabola (short when braking: a
+//     stopping distance ½ v₀ h short).
 //     Damping 0. Sleeping disabled (DISABLE_DEACTIVATION on every dynamic body).
 //   - Margin 0 on every hull: the hull is the mesh, not the mesh grown by Bullet's
 //     0.04 m skin. With margin 0 GJK alone would give one contact point per step;

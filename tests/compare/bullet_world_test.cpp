@@ -356,16 +356,16 @@ TEST(BulletWorld, RunnerRunsBulletWhereItCan) {
 
 // Friction (issue #17): Bullet runs the friction scenes with our μ per pair
 // (√(μ_a μ_b) by its combiner hook, bullet_world.cpp). Its answers are judged
-// by where its method puts them, not by ours (README "Friction"): positions by
-// semi-implicit Euler lag ½ a h t behind the parabola, and its resting contact
-// jitters (the limit cycle at the top of bullet_world.cpp), so a held box
-// creeps. Bounds, each about twice what the cause gives (measured in the
-// comment): sliding speed within 2 a h of a t (0.95 a h: it ends one step's
-// acceleration short); the distance within a h t (0.48); the stopping
-// distance within v₀ h, twice the ½ v₀ h lag (measured 1.3 v₀ h / 2: 3.2e-3
-// relative), the stopping time within two steps; the held box moves less than
-// 1.5 mm in 1 s (0.70 mm: against 1.7 m free, and 1.7 mm for the creep of
-// ½ g sin θ h per step that our backends had before the friction displacement).
+// by where its method puts them, not by ours (README "Friction"): its
+// semi-implicit Euler puts positions ½ a h t off the parabola (short when
+// braking), and its resting contact jitters (the limit cycle at the top of
+// bullet_world.cpp), so a held box slips now and then. Bounds, each about
+// twice what was measured or what the cause gives: the sliding speed within
+// 2 a h of a t (measured 0.95 a h short: one step's acceleration); the slide
+// distance within a h t (0.24 a h t short); the stopping distance within
+// v₀ h, twice the ½ v₀ h of the integrator (0.64 v₀ h short), the stopping
+// time within two steps (on the step); the held box moves less than 1.5 mm in
+// 1 s (0.70 mm; free, it would slide 1.7 m).
 std::vector<core::FrictionFigure> bullet_figures(const std::string& name) {
   const core::Scene s = core::load_scene(std::filesystem::path(GACOMPARE_DATA_DIR) / "scenes" / (name + ".json"));
   const core::Run run = simulate_bullet(s);
