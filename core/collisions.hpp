@@ -47,6 +47,13 @@
 //     the counters say how many there were. Pairs that part after an impact
 //     are never corrected: a translation changes the angular momentum about
 //     the origin (x × m v), which an elastic impact must conserve.
+//
+// Coulomb friction (issue #17; beyond the report, whose response is
+// frictionless): only for pairs with μ = √(μ_a μ_b) > 0, two tangent rows per
+// contact in the same Gauss–Seidel, held in the disc |λ_t| ≤ μ λ_n and warm
+// started (Friction below), and resting contacts displaced by ½ h of their
+// impulses' velocity change (friction_displacement). With μ = 0 no friction
+// row exists and every run is as before, bit for bit.
 #include "core/bounding_volume.hpp"
 #include "core/broadphase.hpp"
 #include "core/collision.hpp"
