@@ -251,6 +251,19 @@ void RigidBodies::push(Motion& b, const Arm& a, const Eigen::Vector3d& n, double
   b.angular_impulse += j * a.r_n;
 }
 
+Eigen::Vector3d RigidBodies::point_velocity(const Motion& b, const Eigen::Vector3d& p) {
+  return to_eigen(b.v + ((vector3(p) - b.x) | b.w));
+}
+
+Eigen::Vector3d RigidBodies::in_plane(const Eigen::Vector3d& n, const Eigen::Vector3d& u) {
+  const Bivector3 plane = bivector_of_axial(vector3(n));
+  return to_eigen((vector3(u) | plane) | ~plane);
+}
+
+Eigen::Vector3d RigidBodies::quarter_turn(const Eigen::Vector3d& n, const Eigen::Vector3d& t) {
+  return to_eigen(vector3(t) | bivector_of_axial(vector3(n)));
+}
+
 void RigidBodies::store(const Model& m, std::span<double> y, std::size_t b, const Motion& motion) {
   if (m.bodies[b].inv_mass == 0) return;
   const Layout at = layout(b);

@@ -102,6 +102,14 @@ struct RigidBodies {
   static double normal_velocity(const Motion& b, const Arm& a, const Eigen::Vector3d& n);
   // An impulse j n at the row's point: v += j n/M, Ω += j I⁻¹(r ∧ n).
   static void push(Motion& b, const Arm& a, const Eigen::Vector3d& n, double j);
+  // Friction (issue #17): the contact plane's two directions from its bivector
+  // P = n I (bivector_of_axial) and left contractions, no cross product.
+  // The velocity of the body's point at p: ṗ = v + r⌋Ω.
+  static Eigen::Vector3d point_velocity(const Motion& b, const Eigen::Vector3d& p);
+  // The part of u in the plane P = n I: (u⌋P)⌋P⁻¹, with P⁻¹ = P̃ (a unit blade).
+  static Eigen::Vector3d in_plane(const Eigen::Vector3d& n, const Eigen::Vector3d& u);
+  // t (in P) turned a right angle within P: t⌋P (for n = e3, P = e12, e1 ↦ e2).
+  static Eigen::Vector3d quarter_turn(const Eigen::Vector3d& n, const Eigen::Vector3d& t);
   // |v| and |Ω| = √(−Ω²): how far a point at distance ρ from the centre can move.
   static double speed(const Motion& b) { return std::sqrt(scalar_product(b.v, b.v)); }
   static double angular_speed(const Motion& b) { return std::sqrt(-scalar_product(b.w, b.w)); }

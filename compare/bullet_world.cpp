@@ -53,7 +53,25 @@
 //     With 0 every penetration is recovered by split impulse: 0.250, 0.249,
 //     0.252, 0.234 (tests/compare/bullet_world_test.cpp).
 // Our settings:
-//   - Friction 0 (sliding, rolling, spinning): §2.5 is frictionless (eq. 47–53).
+//   - Friction: each body's μ (the scene's "friction", default 0: §2.5 is
+//     frictionless), combined per pair as our √(μ_a μ_b) through Bullet's hook
+//     gCalculateCombinedFrictionCallback (Bullet's default multiplies, as for
+//     restitution below); rolling and spinning friction 0 (our backends have
+//     neither). Bullet's Coulomb model differs from ours (core/collisions.hpp):
+//     its friction rows are solved per contact point of the persistent manifold,
+//     after the normal rows in each of its 10 sweeps, each bounded by
+//     ±μ times that point's current normal impulse: one row along the relative
+//     sliding velocity (SOLVER_USE_2_FRICTION_DIRECTIONS is off by default; a
+//     point that does not slip gets btPlaneSpace1's first tangent), so a box
+//     per point and direction, where ours holds both tangents in one disc
+//     |λ_t| ≤ μ λ_n converged to 1e-11 m/s. Its friction anchor
+//     (CF_HAS_FRICTION_ANCHOR, off by default) would keep a contact point where
+//     it was made; without it points are refreshed each step. Bullet integrates
+//     positions after the contact solve (semi-implicit Euler: v += g h, solve,
+//     x += v h): no creep of our kind (ours integrates first and displaces
+//     resting contacts by ½ h Δv, core/collisions.hpp friction_displacement),
+//     but positions ½ a h t off the exact parabola (short when braking: a
+//     stopping distance ½ v₀ h short).
 //     Damping 0. Sleeping disabled (DISABLE_DEACTIVATION on every dynamic body).
 //   - Margin 0 on every hull: the hull is the mesh, not the mesh grown by Bullet's
 //     0.04 m skin. With margin 0 GJK alone would give one contact point per step;
@@ -181,21 +199,30 @@ Eigen::Matrix3d to_eigen(const btMatrix3x3& m) {
 
 bool finite(const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
-// ε_pair = min(ε_a, ε_b) (core/scene.hpp's rule), installed while the world steps.
+// ε_pair = min(ε_a, ε_b) and μ_pair = √(μ_a μ_b) (core/scene.hpp's rules),
+// installed while the world steps.
 btScalar min_restitution(const btCollisionObject* a, const btCollisionObject* b) {
   return std::min(a->getRestitution(), b->getRestitution());
 }
-class RestitutionHook {
+btScalar root_friction(const btCollisionObject* a, const btCollisionObject* b) {
+  return std::sqrt(a->getFriction() * b->getFriction());
+}
+class MaterialHooks {
  public:
-  RestitutionHook() : saved_(gCalculateCombinedRestitutionCallback) {
+  MaterialHooks()
+      : restitution_(gCalculateCombinedRestitutionCallback), friction_(gCalculateCombinedFrictionCallback) {
     gCalculateCombinedRestitutionCallback = &min_restitution;
+    gCalculateCombinedFrictionCallback = &root_friction;
   }
-  ~RestitutionHook() { gCalculateCombinedRestitutionCallback = saved_; }
-  RestitutionHook(const RestitutionHook&) = delete;
-  RestitutionHook& operator=(const RestitutionHook&) = delete;
+  ~MaterialHooks() {
+    gCalculateCombinedRestitutionCallback = restitution_;
+    gCalculateCombinedFrictionCallback = friction_;
+  }
+  MaterialHooks(const MaterialHooks&) = delete;
+  MaterialHooks& operator=(const MaterialHooks&) = delete;
 
  private:
-  CalculateCombinedCallback saved_;
+  CalculateCombinedCallback restitution_, friction_;
 };
 
 struct BulletBody {
@@ -314,7 +341,7 @@ core::Run simulate_bullet(const core::Scene& scene) {
   const Vec3 gravity = effects.gravity;  // zero without a gravity effect
   const double step = collisions ? collisions->step : kDefaultStep;
 
-  const RestitutionHook hook;
+  const MaterialHooks hooks;
   auto world = std::make_unique<World>();
   btContactSolverInfo& info = world->world.getSolverInfo();
   info.m_splitImpulsePenetrationThreshold = 0;  // every penetration by split impulse (top of file)
@@ -345,7 +372,7 @@ core::Run simulate_bullet(const core::Scene& scene) {
     const double mass = fixed ? 0.0 : props[b].mass;
     btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, bb.shape.get(),
                                                 fixed ? btVector3(0, 0, 0) : to_bullet(moments));
-    ci.m_friction = 0;
+    ci.m_friction = collisions ? body.friction : 0.0;
     ci.m_rollingFriction = 0;
     ci.m_spinningFriction = 0;
     ci.m_linearDamping = 0;

@@ -365,6 +365,7 @@ std::vector<CheckLine> lateral_drift(const World& w, const core::Scene& scene, c
         for (const auto* posed : {&here, &next}) {
           const Posed &a = (*posed)[i], &b = (*posed)[j];
           if (spheres_apart(w, a, i, b, j, reach) || face_gap(a, b) >= reach) continue;
+          if (scene.bodies[i].friction * scene.bodies[j].friction > 0) ok = false;  // friction pushes sideways
           if (!across_level_face(w, b, a, band, reach) && !across_level_face(w, a, b, band, reach)) ok = false;
         }
       }

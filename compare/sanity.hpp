@@ -71,7 +71,9 @@ CheckLine penetration_check(const core::Scene& scene, const core::Run& run);
 //     side to within 10 tol and that body's lowest points over the face's
 //     interior by at least the reach (so the contact is not at an edge, where
 //     the normal is ambiguous). Other bodies further than the reach are
-//     proved far by a face axis of the pair.
+//     proved far by a face axis of the pair;
+//   - and no body within that reach has friction with it (a pair's
+//     √(μ_a μ_b) > 0, issue #17): friction pushes sideways by design.
 // Over each stretch [t0, t1]: the lateral velocity changes by at most
 // kSanityLateralAcceleration · max(t1 − t0, 1 s) (no body starts sliding on
 // its own), and the lateral displacement differs from the trapezoid integral of

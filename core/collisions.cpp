@@ -35,6 +35,9 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["largest_island"] = largest_island;
   out["narrowphase_shapes"] = narrowphase_shapes;
   out["narrowphase_axes_kept"] = narrowphase_axes_kept;
+  out["friction_contacts"] = friction_contacts;
+  out["sliding_contacts"] = sliding_contacts;
+  out["friction_warm_started"] = friction_warm_started;
 }
 
 CollisionSetup collision_setup(const Scene& scene) {
@@ -58,6 +61,7 @@ CollisionSetup collision_setup(const Scene& scene) {
     s.inradius.push_back(inradius);
     s.min_inradius = std::min(s.min_inradius, inradius);
     s.restitution.push_back(body.restitution ? *body.restitution : s.settings.restitution);
+    s.friction.push_back(body.friction);
     s.is_static.push_back(body.is_static);
     const Aabb box = aabb_of(std::span<const Vec3>(s.meshes.back()->vertices()));
     s.static_mid.push_back(0.5 * (box.min + box.max));

@@ -47,6 +47,13 @@
 //     the counters say how many there were. Pairs that part after an impact
 //     are never corrected: a translation changes the angular momentum about
 //     the origin (x × m v), which an elastic impact must conserve.
+//
+// Coulomb friction (issue #17; beyond the report, whose response is
+// frictionless): only for pairs with μ = √(μ_a μ_b) > 0, two tangent rows per
+// contact in the same Gauss–Seidel, held in the disc |λ_t| ≤ μ λ_n and warm
+// started (Friction below), and resting contacts displaced by ½ h of their
+// impulses' velocity change (friction_displacement). With μ = 0 no friction
+// row exists and every run is as before, bit for bit.
 #include "core/bounding_volume.hpp"
 #include "core/broadphase.hpp"
 #include "core/collision.hpp"
@@ -58,6 +65,7 @@
 #include "core/stage.hpp"
 #include "core/time_of_impact.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -101,6 +109,9 @@ struct CollisionCounters {
   // step's start) and the largest island seen.
   std::uint64_t islands = 0, local_islands = 0, local_island_bodies = 0, largest_island = 0, local_steps = 0;
   std::uint64_t narrowphase_shapes = 0, narrowphase_axes_kept = 0;  // bodies' geometry built; pairs their last axis decided
+  // Friction (issue #17): the contacts given friction rows, those whose
+  // friction ended on the cone (sliding) and the friction rows warm started.
+  std::uint64_t friction_contacts = 0, sliding_contacts = 0, friction_warm_started = 0;
   void add_to(std::map<std::string, std::uint64_t>& out) const;
 };
 
@@ -112,6 +123,7 @@ struct CollisionSetup {
   std::vector<std::shared_ptr<const Mesh>> meshes;
   std::vector<Vec3> sphere_centre;  // body frame
   std::vector<double> sphere_radius, inradius, restitution;
+  std::vector<double> friction;  // each body's μ (core/scene.hpp Body::friction)
   std::vector<char> is_static;
   // A static body's box in its own frame (the mesh's bounding box, centre and
   // half sides): the broadphase's spheres are loose about a slab or a wall, so
@@ -406,11 +418,15 @@ struct Collider {
       return it->second;
     };
     std::vector<Row> rows;
+    std::vector<Friction> frictions;  // none unless a pair has μ > 0
     std::vector<char> resting_pair(hits.size(), 0);
     for (std::size_t hi = 0; hi < hits.size(); ++hi) {
       const auto& h = hits[hi];
       const int wa = world[h.a], wb = world[h.b];
       const double eps = std::min(setup.restitution[wa], setup.restitution[wb]);
+      // Box2D's mixing rule, √(μ_a μ_b) (Bullet multiplies by default; its run
+      // is hooked to the same √, compare/bullet_world.cpp).
+      const double mu = std::sqrt(setup.friction[wa] * setup.friction[wb]);
       const std::size_t sa = slot(h.a), sb = slot(h.b);
       const Motion& ma = motion[sa];
       const Motion& mb = motion[sb];
@@ -424,20 +440,27 @@ struct Collider {
         counters.resting_contacts += resting;
         resting_pair[hi] |= resting;
         r.target = r.before < 0 ? -(resting ? 0.0 : eps) * r.before : 0.0;
+        if (mu > 0) r.friction = static_cast<std::ptrdiff_t>(frictions.size()),
+                    frictions.push_back(friction_row(rows.size(), r, c.point, mu, motion));
         rows.push_back(r);
       }
     }
     counters.contacts += rows.size();
-    warm_start(rows, motion, dt);
+    counters.friction_contacts += frictions.size();
+    warm_start(rows, frictions, motion, dt);
     double scale = 0;
     for (const auto& r : rows) scale = std::max(scale, std::abs(r.target));
-    solve(rows, motion, kVelocityTolerance * (1 + scale), counters.sweep_cap_hits);
+    for (const auto& f : frictions) scale = std::max(scale, std::hypot(f.slip[0], f.slip[1]));
+    solve(rows, motion, kVelocityTolerance * (1 + scale), counters.sweep_cap_hits, frictions);
+    for (const auto& f : frictions)
+      counters.sliding_contacts += std::hypot(f.lambda[0], f.lambda[1]) >= f.mu * rows[f.row].lambda * (1 - 1e-9) &&
+                                   rows[f.row].lambda > 0;
     for (const auto& r : rows) {
       counters.impulses += r.lambda > 0;
       // An impact whose approach the solve did not stop (to 0.1 % of its speed).
       if (r.before < -setup.resting_speed && normal_velocity(r, motion) < 1e-3 * r.before) ++counters.unresolved_impacts;
     }
-    remember(hits, world, rows, dt);
+    remember(hits, world, rows, frictions, dt);
     // The pairs whose depth is corrected: deeper than tol/2, and resting or
     // not parting by themselves. A pair that parts after an impact is left
     // alone: the impact conserves momenta exactly, and the depth goes with it.
@@ -448,6 +471,7 @@ struct Collider {
       correct[hi] = hits[hi].sat.depth > 0.5 * tol && (resting_pair[hi] || !parting[hi]);
     for (std::size_t k = 0; k < motion.size(); ++k) Bodies::store(m, y, static_cast<std::size_t>(body_of[k]), motion[k]);
     correct_positions(m, y, rows, motion, body_of, correct);
+    friction_displacement(m, y, rows, frictions, motion, body_of, dt);
   }
 
   // Forgets warm-start impulses older than the previous collision step (a
@@ -486,10 +510,30 @@ struct Collider {
     Vec3 n, ra, rb;        // the normal (a to b); the point from each centre
     typename Bodies::Arm arm_a, arm_b;
     double k, target, lambda, before, depth;  // 1/effective mass, target n·Δv, impulse, n·Δv before, depth
+    std::ptrdiff_t friction = -1;  // its friction rows in the solve's Frictions, or −1 (μ = 0)
+  };
+  // Coulomb friction at one contact (issue #17): two rows along the tangents
+  // t[0], t[1] of the contact plane, their accumulated impulses λ_t held in the
+  // disc |λ_t| ≤ μ λ_n of the contact's accumulated normal impulse. A disc, not
+  // a pyramid: the cone is isotropic, so the friction a sliding body feels does
+  // not depend on how its sliding lines up with the basis (a four-sided pyramid
+  // |λ_1|, |λ_2| ≤ μ λ_n lets a body sliding at 45° to t[0] feel √2 μ). t[0] is
+  // the direction of the relative sliding velocity when there is one (as
+  // Bullet's first friction direction), so a sliding contact's friction lies
+  // along t[0] and each row's own effective mass (Gauss–Seidel uses no 2 × 2
+  // block) does not turn it off the slip; at rest t[0] is any tangent.
+  struct Friction {
+    std::size_t row;             // its normal row
+    std::array<Vec3, 2> t;       // unit tangents (backend: in_plane, quarter_turn)
+    std::array<typename Bodies::Arm, 2> arm_a, arm_b;
+    std::array<double, 2> k, lambda, slip;  // 1/effective mass, impulse, relative velocity before
+    double mu;
+    bool impact;  // its normal row approached faster than v_rest: no friction_displacement
   };
   struct Cached {
     Vec3 ra, rb;
     double rate;  // impulse per second
+    Vec3 friction_rate = Vec3::Zero();  // the friction impulse per second (world), zero without friction
   };
   struct Remembered {
     std::uint64_t step = 0;  // the collision step that stored them
@@ -508,13 +552,69 @@ struct Collider {
     Bodies::push(of[r.sb], r.arm_b, r.n, dl);
     Bodies::push(of[r.sa], r.arm_a, r.n, -dl);
   }
+  static double tangent_velocity(const Row& r, const Friction& f, int d, const Motions& of) {
+    return Bodies::normal_velocity(of[r.sb], f.arm_b[d], f.t[d]) - Bodies::normal_velocity(of[r.sa], f.arm_a[d], f.t[d]);
+  }
+  static void push(const Row& r, const Friction& f, int d, Motions& of, double dl) {
+    Bodies::push(of[r.sb], f.arm_b[d], f.t[d], dl);
+    Bodies::push(of[r.sa], f.arm_a[d], f.t[d], -dl);
+  }
+
+  // The friction rows of normal row r (index `row`) at contact point p: the
+  // tangents from the relative velocity's part in the contact plane (the
+  // backend's in_plane and quarter_turn), or from the coordinate axis least
+  // along n when the contact does not slip.
+  Friction friction_row(std::size_t row, const Row& r, const Vec3& p, double mu, const Motions& of) const {
+    const Vec3 slip = Bodies::point_velocity(of[r.sb], p) - Bodies::point_velocity(of[r.sa], p);
+    Vec3 t = Bodies::in_plane(r.n, slip);
+    if (!(t.norm() > 1e-12 * (1 + slip.norm()))) {
+      Eigen::Index axis = 0;
+      r.n.cwiseAbs().minCoeff(&axis);
+      t = Bodies::in_plane(r.n, Vec3::Unit(axis));
+    }
+    t.normalize();
+    Friction f{row, {t, Bodies::quarter_turn(r.n, t)}, {}, {}, {}, {0, 0}, {}, mu, r.before < -setup.resting_speed};
+    for (int d = 0; d < 2; ++d) {
+      f.arm_a[d] = Bodies::arm(of[r.sa], p, f.t[d]);
+      f.arm_b[d] = Bodies::arm(of[r.sb], p, f.t[d]);
+      f.k[d] = Bodies::inverse_effective_mass(of[r.sa], f.arm_a[d]) + Bodies::inverse_effective_mass(of[r.sb], f.arm_b[d]);
+      f.slip[d] = tangent_velocity(r, f, d, of);
+    }
+    return f;
+  }
+
+  // One Gauss–Seidel update of a contact's friction: each row's impulse to
+  // stop its slip, then the pair projected onto the disc |λ_t| ≤ μ λ_n, λ_n
+  // the normal row's accumulated impulse (static friction inside the disc,
+  // dynamic on its rim). Returns the largest velocity change.
+  static double relax(const Row& r, Friction& f, Motions& motion) {
+    std::array<double, 2> next{};
+    for (int d = 0; d < 2; ++d) next[d] = f.lambda[d] - tangent_velocity(r, f, d, motion) / f.k[d];
+    const double limit = f.mu * r.lambda, size = std::hypot(next[0], next[1]);
+    if (size > limit) {
+      const double s = size > 0 ? limit / size : 0.0;
+      next[0] *= s, next[1] *= s;
+    }
+    double worst = 0;
+    for (int d = 0; d < 2; ++d) {
+      const double dl = next[d] - f.lambda[d];
+      if (dl == 0) continue;
+      worst = std::max(worst, std::abs(dl) * f.k[d]);
+      f.lambda[d] = next[d];
+      push(r, f, d, motion, dl);
+    }
+    return worst;
+  }
 
   // Projected Gauss–Seidel with accumulated clamping: each row's total impulse
   // λ stays ≥ 0 while a sweep may lower it (Catto's sequential impulses; eq. 53
   // / eq. 54 are the rows' effective masses). Stops when no row changes its
   // velocity by more than `converged` in a sweep, or after kMaxSweeps (counted
   // in `cap_hits`).
-  void solve(std::vector<Row>& rows, Motions& motion, double converged, std::uint64_t& cap_hits) const {
+  // Friction rows (if any) are relaxed after the normal rows in every sweep,
+  // against the normal impulses of that sweep.
+  void solve(std::vector<Row>& rows, Motions& motion, double converged, std::uint64_t& cap_hits,
+             std::span<Friction> frictions = {}) const {
     if (rows.empty()) return;
     for (int sweep = 0;; ++sweep) {
       if (sweep == kMaxSweeps) {
@@ -531,6 +631,7 @@ struct Collider {
         r.lambda = next;
         push(r, motion, dl);
       }
+      for (auto& f : frictions) worst = std::max(worst, relax(rows[f.row], f, motion));
       if (worst <= converged) return;
     }
   }
@@ -540,7 +641,9 @@ struct Collider {
   // starts from the impulse it had, scaled from that step's length to this
   // one's (a resting contact's impulse is its load times the step). A stack
   // then needs a sweep or two per step, not a fresh solve through every box.
-  void warm_start(std::vector<Row>& rows, Motions& motion, double dt) const {
+  // A friction row starts from the remembered friction impulse's parts along
+  // its tangents, held in the disc of its warm-started normal impulse.
+  void warm_start(std::vector<Row>& rows, std::vector<Friction>& frictions, Motions& motion, double dt) const {
     if (cache_.empty() || !(dt > 0)) return;
     for (auto& r : rows) {
       const auto pair = cache_.find(key(r.a, r.b));
@@ -556,11 +659,20 @@ struct Collider {
       r.lambda = best->rate * dt;
       push(r, motion, r.lambda);
       ++counters.warm_started;
+      if (r.friction < 0) continue;
+      Friction& f = frictions[static_cast<std::size_t>(r.friction)];
+      const Vec3 j = best->friction_rate * dt;
+      std::array<double, 2> l{j.dot(f.t[0]), j.dot(f.t[1])};
+      const double size = std::hypot(l[0], l[1]), limit = f.mu * r.lambda;
+      if (size > limit) l[0] *= limit / size, l[1] *= limit / size;
+      for (int d = 0; d < 2; ++d) f.lambda[d] = l[d], push(r, f, d, motion, l[d]);
+      counters.friction_warm_started += size > 0;
     }
   }
   // The impulses of this solve replace what its pairs had; other pairs (other
   // islands) keep theirs until forget_old_contacts.
-  void remember(std::span<const PairHit> hits, World world, const std::vector<Row>& rows, double dt) const {
+  void remember(std::span<const PairHit> hits, World world, const std::vector<Row>& rows,
+                const std::vector<Friction>& frictions, double dt) const {
     for (const auto& h : hits) cache_.erase(key(world[h.a], world[h.b]));
     if (!(dt > 0)) return;
     for (const auto& r : rows)
@@ -568,7 +680,38 @@ struct Collider {
         auto& e = cache_[key(r.a, r.b)];
         e.step = counters.steps;
         e.at.push_back({r.ra, r.rb, r.lambda / dt});
+        if (r.friction < 0) continue;
+        const Friction& f = frictions[static_cast<std::size_t>(r.friction)];
+        e.at.back().friction_rate = (f.lambda[0] * f.t[0] + f.lambda[1] * f.t[1]) / dt;
       }
+  }
+
+  // The impulses of a resting contact with friction stand for forces that
+  // acted through the step, but the step's integration moved the bodies
+  // without them: a box held on an incline slid ½ g sin θ h² down it in every
+  // step, which the friction impulse then stopped (a creep of ½ g sin θ h,
+  // 1.7 mm/s at h = 1 ms, 20°), and a sliding box went ½ μ g h² too far per
+  // step. Each such contact's normal and friction impulse λ (one wrench, so
+  // that the friction's torque about the centre is balanced by the normal's)
+  // moves the bodies by ½ dt of the velocity change it made, as a constant
+  // force through the step would have: pseudo-velocities as in the split
+  // impulse, so no momentum changes. Impacts (approach faster than v_rest)
+  // are instants, not forces, and are left alone. Only contacts with friction
+  // (μ > 0): a frictionless scene is unchanged.
+  void friction_displacement(const Model& m, std::span<double> y, const std::vector<Row>& rows,
+                             const std::vector<Friction>& frictions, const Motions& motion,
+                             const std::vector<int>& body_of, double dt) const {
+    if (frictions.empty() || !(dt > 0)) return;
+    Motions pseudo;
+    pseudo.reserve(motion.size());
+    for (const auto& mo : motion) pseudo.push_back(Bodies::at_rest(mo));
+    for (const auto& f : frictions) {
+      if (f.impact) continue;
+      const Row& r = rows[f.row];
+      push(r, pseudo, 0.5 * dt * r.lambda);
+      for (int d = 0; d < 2; ++d) push(r, f, d, pseudo, 0.5 * dt * f.lambda[d]);
+    }
+    for (std::size_t k = 0; k < pseudo.size(); ++k) Bodies::displace(m, y, static_cast<std::size_t>(body_of[k]), pseudo[k]);
   }
 
   // Positional correction by split impulse (pseudo-velocities, as Bullet's

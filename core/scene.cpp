@@ -600,9 +600,9 @@ class Loader {
   }
 
   Body body(const Val& v) {
-    static constexpr Keys<10> keys = {"name",     "shape",       "mass",     "density",
+    static constexpr Keys<11> keys = {"name",     "shape",       "mass",     "density",
                                       "position", "orientation", "velocity", "angular_velocity",
-                                      "static",   "restitution"};
+                                      "static",   "restitution", "friction"};
     Obj o(v, keys);
     Body b;
     b.name = claim(o.req("name"), "body");
@@ -619,6 +619,7 @@ class Loader {
     if (auto x = o.opt("angular_velocity")) b.angular_velocity = vec3(*x);
     if (auto x = o.opt("static")) b.is_static = boolean(*x);
     if (auto x = o.opt("restitution")) b.restitution = number(*x, Range::unit);
+    if (auto x = o.opt("friction")) b.friction = number(*x, Range::non_negative);
     return b;
   }
 

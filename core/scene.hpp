@@ -165,6 +165,11 @@ struct Body {
   Vec3 angular_velocity{0, 0, 0};           // world frame, rad/s
   bool is_static = false;
   std::optional<double> restitution;        // overrides the collisions effect's for this body
+  // Coulomb friction coefficient μ ≥ 0 (collisions effect): a pair uses
+  // √(μ_a μ_b), Box2D's rule (Bullet's default multiplies; its run is given
+  // the same √ by a hook, compare/bullet_world.cpp). 0, the default, adds no
+  // friction rows at all: a frictionless scene runs exactly as before.
+  double friction = 0;
 };
 
 // --- generators: expanded into particles and constraints by the dynamics issue --------

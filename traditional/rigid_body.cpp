@@ -275,6 +275,12 @@ void RigidBodies::push(Motion& b, const Arm& a, const Vec& n, double j) {
   b.angular_impulse += j * a.r_n;
 }
 
+Vec RigidBodies::point_velocity(const Motion& b, const Vec& p) { return b.v + b.w.cross(p - b.x); }
+
+Vec RigidBodies::in_plane(const Vec& n, const Vec& u) { return n.cross(u.cross(n)); }
+
+Vec RigidBodies::quarter_turn(const Vec& n, const Vec& t) { return n.cross(t); }
+
 void RigidBodies::store(const Model& m, std::span<double> y, std::size_t b, const Motion& motion) {
   if (m.bodies[b].inv_mass == 0) return;
   const Layout at = layout(m, b);

@@ -100,6 +100,13 @@ struct RigidBodies {
   static double normal_velocity(const Motion& b, const Arm& a, const Eigen::Vector3d& n);
   // An impulse j n at the row's point (eq. 48–49): v += j n/M, ω += j I⁻¹(r × n).
   static void push(Motion& b, const Arm& a, const Eigen::Vector3d& n, double j);
+  // Friction (issue #17): the contact plane's two directions from cross products.
+  // The velocity of the body's point at p: ṗ = v + ω × r (eq. 47).
+  static Eigen::Vector3d point_velocity(const Motion& b, const Eigen::Vector3d& p);
+  // The part of u in the plane with unit normal n: n × (u × n) = u − (u·n) n.
+  static Eigen::Vector3d in_plane(const Eigen::Vector3d& n, const Eigen::Vector3d& u);
+  // t (in that plane) turned a right angle about n: n × t.
+  static Eigen::Vector3d quarter_turn(const Eigen::Vector3d& n, const Eigen::Vector3d& t);
   // |v| and |ω|: how far a point at distance ρ from the centre can move.
   static double speed(const Motion& b) { return b.v.norm(); }
   static double angular_speed(const Motion& b) { return b.w.norm(); }

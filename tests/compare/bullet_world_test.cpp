@@ -4,6 +4,7 @@
 #include "compare/bullet_world.hpp"
 #include "compare/runner.hpp"
 #include "core/error.hpp"
+#include "core/friction_answers.hpp"
 #include "core/mass_properties.hpp"
 #include "core/mesh.hpp"
 #include "core/simulator.hpp"
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -350,6 +352,42 @@ TEST(BulletWorld, RunnerRunsBulletWhereItCan) {
   ASSERT_EQ(r.backends.size(), 1u);
   EXPECT_EQ(r.backends[0].run.backend, "bullet");
   EXPECT_EQ(r.backends[0].wall_seconds.size(), 2u);
+}
+
+// Friction (issue #17): Bullet runs the friction scenes with our μ per pair
+// (√(μ_a μ_b) by its combiner hook, bullet_world.cpp). Its answers are judged
+// by where its method puts them, not by ours (README "Friction"): its
+// semi-implicit Euler puts positions ½ a h t off the parabola (short when
+// braking), and its resting contact jitters (the limit cycle at the top of
+// bullet_world.cpp), so a held box slips now and then. Bounds, each about
+// twice what was measured or what the cause gives: the sliding speed within
+// 2 a h of a t (measured 0.95 a h short: one step's acceleration); the slide
+// distance within a h t (0.24 a h t short); the stopping distance within
+// v₀ h, twice the ½ v₀ h of the integrator (0.64 v₀ h short), the stopping
+// time within two steps (on the step); the held box moves less than 1.5 mm in
+// 1 s (0.70 mm; free, it would slide 1.7 m).
+std::vector<core::FrictionFigure> bullet_figures(const std::string& name) {
+  const core::Scene s = core::load_scene(std::filesystem::path(GACOMPARE_DATA_DIR) / "scenes" / (name + ".json"));
+  const core::Run run = simulate_bullet(s);
+  EXPECT_FALSE(run.error);
+  return core::friction_figures(s, run);
+}
+
+TEST(BulletWorld, FrictionSceneAnswersWithinWhatItsIntegratorAllows) {
+  const double h = 1e-3, t = 1.0;
+  const auto slide = bullet_figures("friction_incline_slide");
+  ASSERT_EQ(slide.size(), 2u);
+  const double a = slide[0].analytic / t;
+  EXPECT_NEAR(slide[0].measured, slide[0].analytic, 2 * a * h);
+  EXPECT_NEAR(slide[1].measured, slide[1].analytic, a * h * t);
+  const auto stop = bullet_figures("friction_floor_stop");
+  ASSERT_EQ(stop.size(), 2u);
+  const double v0 = 1.962;
+  EXPECT_NEAR(stop[0].measured, stop[0].analytic, v0 * h);
+  EXPECT_NEAR(stop[1].measured, stop[1].analytic, 2 * h);
+  const auto stick = bullet_figures("friction_incline_stick");
+  ASSERT_EQ(stick.size(), 1u);
+  EXPECT_LT(stick[0].measured, 1.5e-3);
 }
 
 }  // namespace

@@ -35,7 +35,7 @@ TEST(DocsScenes, EveryExampleLoadsAndRunsInBothBackends) {
   std::stringstream text;
   text << in.rdbuf();
   const auto blocks = json_blocks(text.str());
-  ASSERT_EQ(blocks.size(), 4u);  // particles, constraints, rigid bodies, collisions
+  ASSERT_EQ(blocks.size(), 5u);  // particles, constraints, rigid bodies, collisions, friction
   for (const auto& block : blocks) {
     core::Scene scene;
     ASSERT_NO_THROW(scene = core::parse_scene(block, "docs/scenes.md")) << block;

@@ -231,6 +231,21 @@ TEST(Sanity, SlidingDownASlopeIsNotDrift) {
   EXPECT_EQ(compare::lateral_drift_checks(scene, run)[0].verdict, CheckLine::Verdict::info);
 }
 
+// Friction (issue #17) slows a sliding body on a level floor: rule 3 leaves
+// the pair out. The same run without friction fails it.
+TEST(Sanity, SlowingByFrictionIsNotDrift) {
+  auto scene = slab_scene();
+  const double decel = 0.5 * kG;
+  const auto run = make_run(scene, 0.3, [&](std::size_t, double t) {
+    const double v = std::max(0.0, 1.0 - decel * t), x = (1.0 - v * v) / (2 * decel);
+    return State{{x, 0, 0.1 - 5e-5}, {v, 0, 0}};
+  });
+  EXPECT_TRUE(fails(compare::lateral_drift_checks(scene, run)[0]));
+  for (auto& b : scene.bodies) b.friction = 0.5;
+  for (const auto& l : compare::sanity_checks(scene, run)) EXPECT_FALSE(fails(l)) << l.what << ": " << l.note;
+  EXPECT_EQ(compare::lateral_drift_checks(scene, run)[0].verdict, CheckLine::Verdict::info);
+}
+
 TEST(Sanity, BouncingOffAWallIsNotDrift) {
   auto scene = slab_scene();
   scene.bodies.push_back(box("wall", {0.1, 2, 1}, 100, {0.65, 0, 0.5}, true));
