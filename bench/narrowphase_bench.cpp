@@ -328,9 +328,37 @@ void prepared_segments(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations());
 }
 
+// Round pairs (issue #17, core/round.hpp): the pairs of data/collision/round.json
+// with a sphere against a sphere (`spheres` true) or a polyhedron, each body's
+// shape placed once (as the simulation's cached shapes are), so an item is
+// the pair's mathematics alone: sat_then_manifold with its one contact.
+template <class Body>
+void round_pairs(benchmark::State& st, bool spheres) {
+  static const auto cases = collision::load_cases(std::string(GACOMPARE_DATA_DIR) + "/collision/round.json");
+  std::vector<std::pair<typename Body::Shape, typename Body::Shape>> shapes;
+  for (const auto& k : cases)
+    if ((k.mesh_a->is_sphere() && k.mesh_b->is_sphere()) == spheres) shapes.emplace_back(k.a(), k.b());
+  std::vector<collision::FeatureContact> contacts;
+  std::size_t i = 0;
+  for (auto _ : st) {
+    contacts.clear();
+    benchmark::DoNotOptimize(collision::narrowphase<Body>(shapes[i].first, shapes[i].second,
+                                                          collision::Method::sat_then_manifold, &contacts));
+    if (++i == shapes.size()) i = 0;
+  }
+  st.SetItemsProcessed(st.iterations());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  benchmark::RegisterBenchmark("BM_round_sphere_sphere/traditional",
+                               [](benchmark::State& st) { round_pairs<traditional::Body>(st, true); });
+  benchmark::RegisterBenchmark("BM_round_sphere_sphere/cga", [](benchmark::State& st) { round_pairs<cga::Body>(st, true); });
+  benchmark::RegisterBenchmark("BM_round_sphere_polyhedron/traditional",
+                               [](benchmark::State& st) { round_pairs<traditional::Body>(st, false); });
+  benchmark::RegisterBenchmark("BM_round_sphere_polyhedron/cga",
+                               [](benchmark::State& st) { round_pairs<cga::Body>(st, false); });
   benchmark::RegisterBenchmark("BM_narrowphase_report/traditional", [](benchmark::State& st) { per_pair(st, report<Trad>); });
   benchmark::RegisterBenchmark("BM_narrowphase_report/cga", [](benchmark::State& st) { per_pair(st, report<Cga>); });
   benchmark::RegisterBenchmark("BM_narrowphase_sat/traditional", [](benchmark::State& st) {

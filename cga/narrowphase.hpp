@@ -66,6 +66,20 @@ struct NarrowAlgebra {
   static Point cut(const Point& p0, double d0, const Point& p1, double d1) {
     return up(detail::euclid(d0 * p1 - d1 * p0) * (1 / (d0 - d1)));
   }
+
+  // Round shapes (core/round.hpp): a ball as the dual sphere S = up(c) − ½r² n
+  // (entities.hpp). Two spheres' separation from their inner product:
+  // S1·S2 = ½(r1² + r2² − d²) and S·S = r², so d² = S1² + S2² − 2 S1·S2 =
+  // (S1 − S2)², one scalar product of the difference. A point's distance from
+  // another, X·Y = −½|x − y|². (A sphere's centre X against a face is X·π =
+  // S·π, as π·n = 0: distance() above.)
+  using Sphere = DualSphere;
+  static Sphere sphere(const Vec3& centre, double radius) { return cga::sphere(centre, radius); }
+  [[gnu::flatten]] static double centre_distance2(const Sphere& a, const Sphere& b) {
+    const Sphere d = a - b;
+    return scalar_product(d, d);
+  }
+  [[gnu::flatten]] static double distance2(const Point& x, const Point& y) { return -2 * scalar_product(x, y); }
 };
 
 using Shape = collision::Shape<NarrowAlgebra>;

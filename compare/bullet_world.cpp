@@ -226,7 +226,7 @@ class MaterialHooks {
 };
 
 struct BulletBody {
-  std::unique_ptr<btConvexHullShape> shape;
+  std::unique_ptr<btCollisionShape> shape;
   std::unique_ptr<btRigidBody> body;
   Eigen::Matrix3d principal = Eigen::Matrix3d::Identity();  // A: principal frame -> body frame
 };
@@ -256,10 +256,19 @@ core::Mesh centred_mesh(const core::Body& body) {
 }
 
 // The largest ball about the centre of mass inside the body.
-double inradius(const core::Mesh& centred) {
-  double r = std::numeric_limits<double>::infinity();
-  for (const auto& p : centred.planes()) r = std::min(r, -p.distance(Vec3::Zero()));
-  return r;
+double inradius(const core::Mesh& centred) { return core::inradius(centred, Vec3::Zero()); }
+
+// Bullet's own shape for the body: btSphereShape for a sphere (whose margin is
+// its radius, so it keeps Bullet's default), else the hull of the vertices in
+// the principal frame with no margin (top of file).
+std::unique_ptr<btCollisionShape> bullet_shape(const core::Mesh& mesh, const Eigen::Matrix3d& principal) {
+  if (mesh.is_sphere()) return std::make_unique<btSphereShape>(mesh.sphere_radius());
+  auto hull = std::make_unique<btConvexHullShape>();
+  for (const Vec3& v : mesh.vertices()) hull->addPoint(to_bullet(Vec3(principal.transpose() * v)), false);
+  hull->setMargin(0);
+  hull->recalcLocalAabb();
+  hull->initializePolyhedralFeatures();
+  return hull;
 }
 
 void observe(const World& w, core::Sample& s) {
@@ -362,11 +371,7 @@ core::Run simulate_bullet(const core::Scene& scene) {
       moments = pa.moments;
     }
 
-    bb.shape = std::make_unique<btConvexHullShape>();
-    for (const Vec3& v : mesh.vertices()) bb.shape->addPoint(to_bullet(Vec3(bb.principal.transpose() * v)), false);
-    bb.shape->setMargin(0);
-    bb.shape->recalcLocalAabb();
-    bb.shape->initializePolyhedralFeatures();
+    bb.shape = bullet_shape(mesh, bb.principal);
 
     const bool fixed = body.is_static;
     const double mass = fixed ? 0.0 : props[b].mass;

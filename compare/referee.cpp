@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 
 #include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
@@ -53,10 +54,19 @@ std::string pair_text(const char* who, const std::string& a, const Pose& pa, con
 // ---------------------------------------------------------------------------------
 
 struct FclShape::Impl {
-  std::shared_ptr<const fcl::Convexd> convex;
+  std::shared_ptr<const fcl::CollisionGeometryd> geometry;  // fcl::Convexd, or fcl::Sphered for a round shape
 };
 
 FclShape::FclShape(const core::Mesh& mesh) : name_(mesh.name()), size_(mesh.size()) {
+  if (mesh.is_sphere()) {
+    // FCL's own primitive, not the proxy polyhedron (core/mesh.hpp); about the
+    // mesh's origin, where make_sphere puts the centre.
+    if (mesh.sphere_centre() != Vec3::Zero()) throw input_error(mesh.name() + ": the referees need a sphere about its origin");
+    auto impl = std::make_shared<Impl>();
+    impl->geometry = std::make_shared<const fcl::Sphered>(mesh.sphere_radius());
+    impl_ = std::move(impl);
+    return;
+  }
   core::require_convex(mesh);
   auto vertices = std::make_shared<std::vector<fcl::Vector3d>>(mesh.vertices().begin(), mesh.vertices().end());
   // FCL's face list: for each face its vertex count, then its vertex indices
@@ -68,7 +78,7 @@ FclShape::FclShape(const core::Mesh& mesh) : name_(mesh.name()), size_(mesh.size
     faces->insert(faces->end(), t.begin(), t.end());
   }
   auto impl = std::make_shared<Impl>();
-  impl->convex = std::make_shared<const fcl::Convexd>(vertices, static_cast<int>(mesh.triangles().size()), faces);
+  impl->geometry = std::make_shared<const fcl::Convexd>(vertices, static_cast<int>(mesh.triangles().size()), faces);
   impl_ = std::move(impl);
 }
 
@@ -90,8 +100,8 @@ constexpr double kFclTolerance = 1e-6;
 
 PairContact fcl_collide(const FclShape& a, const Pose& pa, const FclShape& b, const Pose& pb) {
   const fcl::Transform3d ta = to_fcl(pa), tb = to_fcl(pb);
-  const fcl::Convexd* ga = a.impl().convex.get();
-  const fcl::Convexd* gb = b.impl().convex.get();
+  const fcl::CollisionGeometryd* ga = a.impl().geometry.get();
+  const fcl::CollisionGeometryd* gb = b.impl().geometry.get();
   PairContact out;  // feature stays Feature::none: the referees name no features
 
   fcl::CollisionRequestd request;
@@ -160,17 +170,27 @@ PairContact fcl_collide(const FclShape& a, const Pose& pa, const FclShape& b, co
 // ---------------------------------------------------------------------------------
 
 struct BulletShape::Impl {
-  btConvexHullShape hull;
+  std::unique_ptr<btConvexShape> shape;  // btConvexHullShape, or btSphereShape for a round shape
 };
 
 BulletShape::BulletShape(const core::Mesh& mesh) : name_(mesh.name()), size_(mesh.size()) {
-  core::require_convex(mesh);
   auto impl = std::make_shared<Impl>();
-  for (const Vec3& v : mesh.vertices()) impl->hull.addPoint(btVector3(v.x(), v.y(), v.z()), false);
+  if (mesh.is_sphere()) {
+    // Bullet's primitive: a point grown by its margin, the radius (so GJK runs
+    // on the centre and adds the radius back: exact).
+    if (mesh.sphere_centre() != Vec3::Zero()) throw input_error(mesh.name() + ": the referees need a sphere about its origin");
+    impl->shape = std::make_unique<btSphereShape>(mesh.sphere_radius());
+    impl_ = std::move(impl);
+    return;
+  }
+  core::require_convex(mesh);
+  auto hull = std::make_unique<btConvexHullShape>();
+  for (const Vec3& v : mesh.vertices()) hull->addPoint(btVector3(v.x(), v.y(), v.z()), false);
   // Margin 0: the hull is the mesh itself, not the mesh grown by a rounded skin
   // (Bullet's default margin 0.04 would add 0.04 to every depth).
-  impl->hull.setMargin(0);
-  impl->hull.recalcLocalAabb();
+  hull->setMargin(0);
+  hull->recalcLocalAabb();
+  impl->shape = std::move(hull);
   impl_ = std::move(impl);
 }
 
@@ -229,7 +249,7 @@ struct BulletTry {
   double mismatch = 0;      // |overlap along normal − depth|
 };
 
-BulletTry bullet_try(const btConvexHullShape& a, const btTransform& ta, const btConvexHullShape& b,
+BulletTry bullet_try(const btConvexShape& a, const btTransform& ta, const btConvexShape& b,
                      const btTransform& tb) {
   btVoronoiSimplexSolver simplex;
   btGjkEpaPenetrationDepthSolver epa;
@@ -257,10 +277,11 @@ BulletTry bullet_try(const btConvexHullShape& a, const btTransform& ta, const bt
   const btVector3 on_a = on_b + n_on_b * output.m_distance;
   r.contact = to_eigen((on_a + on_b) * 0.5);
 
-  // The support-mapping check, with Bullet's own support functions.
+  // The support-mapping check, with Bullet's own support functions (margin
+  // included: 0 for a hull, the radius of a sphere).
   const btVector3 n(r.normal_ab.x(), r.normal_ab.y(), r.normal_ab.z());
-  const btVector3 far_a = ta(a.localGetSupportingVertexWithoutMargin(n * ta.getBasis()));   // max of n·x over A
-  const btVector3 near_b = tb(b.localGetSupportingVertexWithoutMargin(-n * tb.getBasis()));  // min of n·x over B
+  const btVector3 far_a = ta(a.localGetSupportingVertex(n * ta.getBasis()));   // max of n·x over A
+  const btVector3 near_b = tb(b.localGetSupportingVertex(-n * tb.getBasis()));  // min of n·x over B
   const double overlap = n.dot(far_a - near_b);
   r.mismatch = std::abs(overlap - (-r.distance));
   return r;
@@ -276,7 +297,7 @@ PairContact bullet_collide(const BulletShape& a, const Pose& pa, const BulletSha
   int no_result = 0;
   BulletTry worst;
   for (const Mat3& q : kFrames) {
-    const BulletTry r = bullet_try(a.impl().hull, to_bullet(q * pa.rotation, q * (pa.position - centre)), b.impl().hull,
+    const BulletTry r = bullet_try(*a.impl().shape, to_bullet(q * pa.rotation, q * (pa.position - centre)), *b.impl().shape,
                                    to_bullet(q * pb.rotation, q * (pb.position - centre)));
     if (!r.has_result) {
       ++no_result;

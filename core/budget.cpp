@@ -81,9 +81,7 @@ BodyScale body_scale(const Body& body) {
   out.volume = unit.volume;
   out.mass = body.mass ? *body.mass : body.density.value_or(0) * unit.volume;
   for (const auto& v : mesh.vertices()) out.radius = std::max(out.radius, (v - unit.centre_of_mass).stableNorm());
-  out.inradius = INFINITY;
-  for (const auto& p : mesh.planes()) out.inradius = std::min(out.inradius, -p.distance(unit.centre_of_mass));
-  out.inradius = std::max(0.0, out.inradius);
+  out.inradius = std::max(0.0, inradius(mesh, unit.centre_of_mass));
   return out;
 }
 

@@ -54,8 +54,7 @@ CollisionSetup collision_setup(const Scene& scene) {
     const Convexity c = convexity(mesh);
     if (!c.convex)
       throw input_error("body '" + body.name + "': the collisions effect needs convex bodies (§2.4.2): " + c.reason);
-    double inradius = INFINITY;
-    for (const auto& p : mesh.planes()) inradius = std::min(inradius, p.offset);
+    const double inradius = core::inradius(mesh, Vec3::Zero());
     s.names.push_back(body.name);
     s.meshes.push_back(std::make_shared<const Mesh>(std::move(mesh)));
     s.inradius.push_back(inradius);

@@ -371,7 +371,10 @@ struct Collider {
       const Shape& a = reuse ? shape(wa, [&] { return pose_of(i); }) : own_a;
       const Shape& b = reuse ? shape(wb, [&] { return pose_of(j); }) : own_b;
       const Vec3 o = collision::local_origin(a.position(), b.position());
-      g = std::max(g, collision::separating_axis(NarrowBody(a, a.position() - o), NarrowBody(b, b.position() - o)).depth);
+      const NarrowBody va(a, a.position() - o), vb(b, b.position() - o);
+      g = std::max(g, (collision::round_pair(va, vb) ? collision::round_narrowphase(va, vb)
+                                                     : collision::separating_axis(va, vb))
+                          .depth);
       counters.narrowphase_shapes += reuse ? 0 : 2;
     }
     return g;

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <utility>
 
@@ -41,6 +42,16 @@ MassProperties from_moments(double volume, const Vec3& first, const Eigen::Matri
 // products would otherwise cancel catastrophically (a mesh at 1e6 m would lose
 // ~12 digits of its inertia).
 MassProperties mass_properties(const Mesh& mesh, double density) {
+  if (mesh.is_sphere()) {
+    // Exact, not the proxy's (core/mesh.hpp): V = 4/3 π r³, I = 2/5 m r².
+    const double r = mesh.sphere_radius();
+    MassProperties m;
+    m.volume = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    m.mass = density * m.volume;
+    m.centre_of_mass = mesh.sphere_centre();
+    m.inertia = (0.4 * m.mass * r * r) * Eigen::Matrix3d::Identity();
+    return m;
+  }
   const auto& v = mesh.vertices();
   Vec3 o = Vec3::Zero();
   for (const auto& p : v) o += p;

@@ -282,6 +282,7 @@ Mesh Mesh::transformed(const Eigen::Matrix3d& rotation, const Vec3& translation)
   Mesh m = *this;
   Eigen::AlignedBox3d box;
   for (auto& p : m.vertices_) box.extend(p = rotation * p + translation);
+  m.sphere_centre_ = rotation * m.sphere_centre_ + translation;
   m.size_ = box.diagonal().norm();
   const auto& v = m.vertices_;
   std::vector<char> placed(m.planes_.size(), 0);
@@ -352,6 +353,18 @@ Mesh make_icosahedron(double radius) {
 }
 
 // --- convex hull (Qhull) ------------------------------------------------------------
+
+Mesh make_sphere(double radius) {
+  std::vector<Vec3> points;
+  for (int x = -1; x <= 1; ++x)
+    for (int y = -1; y <= 1; ++y)
+      for (int z = -1; z <= 1; ++z)
+        if (x != 0 || y != 0 || z != 0) points.push_back(radius * Vec3(x, y, z).normalized());
+  Mesh m = convex_hull(points, "sphere radius " + fmt(radius));
+  m.name_ = "sphere radius " + fmt(radius);
+  m.sphere_radius_ = radius;
+  return m;
+}
 
 Mesh convex_hull(const std::vector<Vec3>& points, const std::string& what) {
   const std::string name = what + " of " + std::to_string(points.size()) + " points";
@@ -518,8 +531,16 @@ Mesh mesh_for(const Shape& shape) {
     Mesh operator()(const IcosahedronShape& s) const { return make_icosahedron(s.radius); }
     Mesh operator()(const HullShape& s) const { return s.mesh ? *s.mesh : convex_hull(s.points); }
     Mesh operator()(const MeshShape& s) const { return s.mesh ? *s.mesh : load_obj(s.file); }
+    Mesh operator()(const SphereShape& s) const { return make_sphere(s.radius); }
   };
   return std::visit(Build{}, shape);
+}
+
+double inradius(const Mesh& mesh, const Vec3& centre) {
+  if (mesh.is_sphere()) return mesh.sphere_radius() - (centre - mesh.sphere_centre()).norm();
+  double r = INFINITY;
+  for (const auto& p : mesh.planes()) r = std::min(r, -p.distance(centre));
+  return r;
 }
 
 // --- convexity ------------------------------------------------------------------------

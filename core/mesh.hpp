@@ -90,6 +90,18 @@ class Mesh {
     return std::move(*this);
   }
 
+  // Round shapes (issue #17). A sphere is carried as a Mesh whose triangles
+  // are its proxy, a convex polyhedron with every vertex on the sphere and
+  // one at ±r on each axis (make_sphere): so the bounding box and the
+  // bounding sphere read off the vertices are the sphere's own, exactly, and
+  // everything that only bounds a body (broadphase, static boxes, sizes,
+  // plots) works unchanged. What must be exact reads the radius instead:
+  // mass properties, the inradius, the narrowphase (core/round.hpp), the
+  // referees and Bullet. 0 for a polyhedron.
+  double sphere_radius() const { return sphere_radius_; }
+  const Vec3& sphere_centre() const { return sphere_centre_; }  // moved with the vertices by transformed()
+  bool is_sphere() const { return sphere_radius_ > 0; }
+
  private:
   Mesh() = default;  // only from_triangles makes one, so every Mesh is valid
   std::string name_;
@@ -105,6 +117,9 @@ class Mesh {
   bool corners_only_ = false;
   double size_ = 0;
   bool convex_ = false;
+  double sphere_radius_ = 0;
+  Vec3 sphere_centre_ = Vec3::Zero();
+  friend Mesh make_sphere(double radius);
 };
 
 // --- the built-in shapes of the scene format (core/scene.hpp) --------------------
@@ -117,6 +132,10 @@ Mesh make_tetrahedron(double edge);      // regular, centroid at the origin
 Mesh make_pyramid(double base, double height);
 Mesh make_octahedron(double radius);     // vertices at ±radius on the axes
 Mesh make_icosahedron(double radius);    // centre-to-vertex radius
+// A sphere of this radius about the origin: its proxy is the hull of the 26
+// points ±r on the axes, r(±1, ±1, 0)/√2 (and permutations), r(±1, ±1, ±1)/√3
+// (see Mesh::sphere_radius()).
+Mesh make_sphere(double radius);
 
 // The convex hull of a point set, by Qhull (reentrant libqhull_r). Points inside
 // or on the hull are not vertices. Throws input_error naming `what` when the
@@ -134,6 +153,11 @@ Mesh parse_obj(const std::string& text, const std::string& name);
 // Any scene shape. Hull and mesh shapes keep their own coordinates: the caller
 // moves them so that the centre of mass (core/mass_properties.hpp) is the origin.
 Mesh mesh_for(const Shape& shape);
+
+// The radius of the largest ball about `centre` inside the convex body (a
+// sphere's own radius about its centre; a polyhedron's nearest face plane, ≤ 0
+// when the centre is outside): the tunnelling rule and the budgets use it.
+double inradius(const Mesh& mesh, const Vec3& centre);
 
 // Convexity: every vertex on or behind every face plane, within 1e-6 × size():
 // an OBJ file written with 6 significant digits bends a flat face by up to

@@ -32,6 +32,7 @@
 // face of the other.
 #include "core/collision.hpp"
 #include "core/manifold.hpp"
+#include "core/round.hpp"
 #include "core/separating_axis.hpp"
 
 #include <algorithm>
@@ -168,6 +169,16 @@ PairContact narrowphase(const typename Body::Shape& sa, const typename Body::Sha
   const Vec3 origin = local_origin(sa.position(), sb.position());
   const Body A(sa, sa.position() - origin), B(sb, sb.position() - origin);
   const double band = kTouchingBand * pair_scale(sa.mesh(), sb.mesh());
+  if (round_pair(A, B)) {
+    // Every method gives a round pair the same exact answer (core/round.hpp).
+    std::vector<FeatureContact>* found = method == Method::sat ? nullptr : contacts;
+    const std::size_t first = found ? found->size() : 0;
+    PairContact result = round_narrowphase(A, B, band, found);
+    if (found)
+      for (std::size_t i = first; i < found->size(); ++i) (*found)[i].point += origin;
+    result.contact += origin;
+    return result;
+  }
   if (method == Method::manifold || method == Method::sat_then_manifold) {
     SatAxes axes;
     const bool early = method == Method::sat_then_manifold;

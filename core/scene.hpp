@@ -147,12 +147,13 @@ struct TetrahedronShape { double edge = 1; };
 struct PyramidShape { double base = 1; double height = 1; };  // square base, apex above
 struct OctahedronShape { double radius = 1; };             // centre to vertex
 struct IcosahedronShape { double radius = 1; };            // centre to vertex
+struct SphereShape { double radius = 1; };                 // a round shape (core/mesh.hpp, make_sphere)
 // Hulls and OBJ meshes are built once, by the loader (which checks them and
 // names the JSON path of a bad one); mesh_for() hands out that mesh.
 struct HullShape { std::vector<Vec3> points; std::shared_ptr<const Mesh> mesh = nullptr; };
 struct MeshShape { std::filesystem::path file; std::shared_ptr<const Mesh> mesh = nullptr; };  // resolved against the scene file's folder
 using Shape = std::variant<BoxShape, TetrahedronShape, PyramidShape, OctahedronShape,
-                           IcosahedronShape, HullShape, MeshShape>;
+                           IcosahedronShape, HullShape, MeshShape, SphereShape>;
 
 struct Body {
   std::string name;

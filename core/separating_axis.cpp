@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 
 #include <array>
+#include <cmath>
+#include <limits>
 
 namespace gacompare::collision {
 
@@ -58,12 +60,97 @@ Interval extent(const std::vector<LVec>& v, const LVec& u) {
   return s;
 }
 
+// The point of triangle (a, b, c) nearest p, by Ericson's Voronoi regions
+// (Real-Time Collision Detection §5.1.5): a method independent of the
+// narrowphase's (core/round.hpp: face polygons, then edges).
+LVec nearest_on_triangle(const LVec& p, const LVec& a, const LVec& b, const LVec& c) {
+  const LVec ab = b - a, ac = c - a, ap = p - a;
+  const long double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const LVec bp = p - b;
+  const long double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const long double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+  const LVec cp = p - c;
+  const long double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const long double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+  const long double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const long double den = 1 / (va + vb + vc);
+  return a + ab * (vb * den) + ac * (vc * den);
+}
+
+// A round pair (core/round.hpp) in long double: sphere–sphere by the centres'
+// distance; sphere–polyhedron by the nearest point of every triangle when the
+// centre is outside, by the nearest face plane when inside.
+PairContact round_reference(const Placed& a, const Placed& b, const Vec3& origin) {
+  const auto centre = [&](const Placed& s) {
+    return LVec((s.pose.rotation.cast<long double>() * s.mesh->sphere_centre().cast<long double>() +
+                 s.pose.position.cast<long double>() - origin.cast<long double>()));
+  };
+  PairContact out;
+  out.feature = Feature::none;
+  LVec normal = LVec::Zero(), on_a = LVec::Zero();  // a → b; a's surface point nearest b
+  long double gap = 0;
+  if (a.mesh->is_sphere() && b.mesh->is_sphere()) {
+    const LVec ca = centre(a), cb = centre(b);
+    const long double d = (cb - ca).norm(), ra = a.mesh->sphere_radius(), rb = b.mesh->sphere_radius();
+    normal = d > 0 ? LVec((cb - ca) / d) : LVec(0, 0, 1);
+    gap = d - ra - rb;
+    on_a = ca + ra * normal;
+  } else {
+    const bool poly_a = !a.mesh->is_sphere();
+    const Placed& s = poly_a ? b : a;
+    const Placed& p = poly_a ? a : b;
+    const LVec c = centre(s);
+    const long double r = s.mesh->sphere_radius();
+    const Projected P = project(p, origin);
+    const auto& planes = p.mesh->planes();
+    long double most = -std::numeric_limits<long double>::infinity();
+    int arg = 0;
+    const LVec t = p.pose.position.cast<long double>() - origin.cast<long double>();
+    for (std::size_t k = 0; k < planes.size(); ++k) {
+      const long double dist = P.normals[k].dot(c - t) - static_cast<long double>(planes[k].offset);
+      if (dist > most) most = dist, arg = static_cast<int>(k);
+    }
+    LVec out_of_p = LVec::Zero(), surface = LVec::Zero();
+    long double to_p = 0;
+    if (most <= 0) {
+      out_of_p = P.normals[arg];
+      to_p = most;
+      surface = c - most * out_of_p;
+    } else {
+      long double best = std::numeric_limits<long double>::infinity();
+      for (const auto& tri : p.mesh->triangles()) {
+        const LVec q = nearest_on_triangle(c, P.v[tri[0]], P.v[tri[1]], P.v[tri[2]]);
+        const long double d2 = (c - q).squaredNorm();
+        if (d2 < best) best = d2, surface = q;
+      }
+      to_p = std::sqrt(best);
+      out_of_p = (c - surface) / to_p;
+    }
+    gap = to_p - r;
+    normal = poly_a ? out_of_p : LVec(-out_of_p);
+    on_a = poly_a ? surface : LVec(c - r * out_of_p);
+  }
+  out.depth = static_cast<double>(-gap);
+  out.intersect = gap < 0;
+  out.normal = normal.cast<double>();
+  out.contact = (on_a + 0.5L * gap * normal).cast<double>() + origin;
+  return out;
+}
+
 }  // namespace
 
 // Every candidate axis, both bodies projected, the largest gap wins: nothing is
 // pruned, so a wrong pruning rule in the fast path shows up against this.
+// Round pairs have their own exact answer (round_reference above).
 PairContact sat_reference(const Placed& a, const Placed& b) {
   const Vec3 origin = local_origin(a, b);
+  if (a.mesh->is_sphere() || b.mesh->is_sphere()) return round_reference(a, b, origin);
   const Projected A = project(a, origin), B = project(b, origin);
   PairContact best;
   long double gap = -std::numeric_limits<long double>::infinity();

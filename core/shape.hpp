@@ -88,6 +88,15 @@ class Shape {
     const Mat3& r = pose_.rotation;
     unit_ = Algebra::unit(mesh_->size());
     const double per = 1 / unit_;  // a power of two (or 1): exact
+    edges_ready_ = triangles_ready_ = false;
+    if (mesh_->is_sphere()) {
+      // A round shape (core/round.hpp) is its centre and radius: the proxy
+      // polyhedron (core/mesh.hpp) is never placed.
+      centre_ = r * mesh_->sphere_centre();
+      points_.clear(), planes_.clear();
+      climb_ = false;
+      return;
+    }
     const auto& v = mesh_->vertices();
     points_.resize(v.size());
     Vec3 sum = Vec3::Zero();
@@ -120,6 +129,10 @@ class Shape {
   Vec3 normal(int k) const { return Algebra::normal(planes_[k]); }
   double offset(int k) const { return Algebra::offset(planes_[k]) * unit_; }
   const Vec3& centre() const { return centre_; }  // the mean of the vertices: inside a convex body
+  // A round shape (core/round.hpp): its radius (0 for a polyhedron); its
+  // centre is centre(), about the body's position in metres.
+  bool is_sphere() const { return mesh_->is_sphere(); }
+  double radius() const { return mesh_->sphere_radius(); }
 
   // The feature edges, built on first use after a place(): a pair decided by a
   // face never needs them.
@@ -199,9 +212,10 @@ class Shape {
 // One body of a pair: its Shape at translation `offset` in the pair's frame.
 // Two pointers' worth; copies nothing. Every Vec3 it returns is in the pair's
 // frame; shape() reads the body's own.
-template <class Algebra>
+template <class A>
 class BodyView {
  public:
+  using Algebra = A;
   using Shape = collision::Shape<Algebra>;
   using Point = typename Algebra::Point;
   using Plane = typename Algebra::Plane;
@@ -214,6 +228,9 @@ class BodyView {
   Vec3 vertex(int i) const { return shape_->vertex(i) + offset_; }
   Vec3 normal(int k) const { return shape_->normal(k); }
   Vec3 centre() const { return shape_->centre() + offset_; }
+  Vec3 sphere_centre() const { return centre(); }  // a round shape's centre (core/round.hpp)
+  // A point of the pair's frame (metres) in this body's own frame and unit.
+  Point local_point(const Vec3& x) const { return Algebra::lift(Vec3((x - offset_) / shape_->unit())); }
   // Face k of this body as a plane in `other`'s own frame and unit, and vertex
   // j of `other` as a point in this body's.
   Plane plane_toward(int k, const BodyView& other) const {

@@ -37,6 +37,17 @@ struct NarrowAlgebra {
   // (the line–plane intersection).
   static Plane plane_through(const Point& p, const Vec3& s) { return {s, s.dot(p)}; }
   static Point cut(const Point& p0, double d0, const Point& p1, double d1) { return p0 + (d0 / (d0 - d1)) * (p1 - p0); }
+
+  // Round shapes (core/round.hpp): a ball as centre and radius; the spheres'
+  // separation by the distance of their centres, a point's from another by
+  // the dot product of their difference.
+  struct Sphere {
+    Vec3 centre;
+    double radius;
+  };
+  static Sphere sphere(const Vec3& centre, double radius) { return {centre, radius}; }
+  static double centre_distance2(const Sphere& a, const Sphere& b) { return (a.centre - b.centre).squaredNorm(); }
+  static double distance2(const Point& x, const Point& y) { return (x - y).squaredNorm(); }
 };
 
 using Shape = collision::Shape<NarrowAlgebra>;

@@ -332,9 +332,9 @@ std::vector<BadCase> bad_cases() {
        set("/effects/0/k", 1),
        {": /effects/0/k: expected one of the keys type, g, got the unknown key \"k\""}},
       {"UnknownShape",
-       set("/bodies/0/shape", json{{"sphere", 1}}),
-       {": /bodies/0/shape/sphere: expected one of the keys box, tetrahedron",
-        "got the unknown key \"sphere\""}},
+       set("/bodies/0/shape", json{{"capsule", 1}}),
+       {": /bodies/0/shape/capsule: expected one of the keys box, tetrahedron",
+        "mesh, sphere, got the unknown key \"capsule\""}},
       // missing and mistyped top-level values
       {"MissingName",
        erase("/name"),

@@ -1,0 +1,149 @@
+#pragma once
+// The narrowphase of round shapes (issue #17 item 2): sphere–sphere and
+// sphere–convex polyhedron, written once over a backend's BodyView
+// (core/shape.hpp), whose algebra (traditional/narrowphase.hpp,
+// cga/narrowphase.hpp) supplies:
+//   Sphere, sphere(c, r): a ball ((c, r), or the dual sphere S = up(c) − ½r² n);
+//   centre_distance2(S1, S2): |c1 − c2|² ((c1 − c2)·(c1 − c2), or (S1 − S2)²
+//     = S1² + S2² − 2 S1·S2 = r1² + r2² − 2 S1·S2: the spheres' separation
+//     from their inner product);
+//   distance(π, X): a point's signed distance from a plane (n·x − d, or X·π;
+//     for the centre X of a sphere S, S·π = X·π since π·n = 0);
+//   distance2(X, Y): two points' squared distance (|x − y|², or −2 X·Y).
+//
+// What comes back is what the polyhedra give (core/collision.hpp): the exact
+// signed distance as −depth (not a lower bound: a round pair's closest points
+// are known), the unit normal from a towards b, the point midway between the
+// two surfaces, and at most one FeatureContact for the response (a sphere
+// touches a convex body at one point), when the pair is within the touching
+// band. So the impulse solver, its friction rows, the time-of-impact search
+// and the positional correction run on round pairs unchanged.
+//
+// Sphere–polyhedron, by the closest feature of the polyhedron to the centre c:
+//   - the signed distances s_k of c from every face plane. If none is > 0 the
+//     centre is inside: the face with the largest s_k (the least deep) is the
+//     shortest way out, depth r − s_k along its normal;
+//   - otherwise, a face with s_k > 0 whose polygon contains c's projection
+//     (c behind every side plane of the face: the plane through a boundary
+//     edge with normal edge × face normal; c's projection and c itself lie on
+//     the same side of a plane perpendicular to the face) is the closest
+//     feature, at distance s_k: on a convex body c − q in the normal cone at
+//     q makes q the unique closest point;
+//   - if no face holds it, the closest point lies on the boundary of a face,
+//     so on a feature edge (ends included: the vertices): the nearest point of
+//     every edge segment, the least distance.
+#include "core/collision.hpp"
+
+#include <cmath>
+#include <vector>
+
+namespace gacompare::collision {
+
+namespace detail {
+
+// The contact from the signed distance `gap` between the surfaces along the
+// unit normal n (from a towards b), with p_a the point of a's surface nearest
+// b: the point midway between the surfaces is p_a + ½ gap n.
+inline PairContact round_contact(double gap, const Vec3& n, const Vec3& p_a, Feature f) {
+  PairContact c;
+  c.depth = -gap;
+  c.intersect = gap < 0;
+  c.normal = n;
+  c.contact = p_a + (0.5 * gap) * n;
+  c.feature = f;
+  return c;
+}
+
+// Two spheres, each centre in the pair's frame (metres).
+template <class Body>
+PairContact sphere_sphere(const Body& a, const Body& b) {
+  using A = typename Body::Algebra;
+  const Vec3 ca = a.sphere_centre(), cb = b.sphere_centre();
+  const double ra = a.shape().radius(), rb = b.shape().radius();
+  const double d2 = A::centre_distance2(A::sphere(ca, ra), A::sphere(cb, rb));
+  const double d = std::sqrt(std::max(0.0, d2));
+  // Concentric spheres: no direction is preferred; +z, typed by the depth.
+  const Vec3 n = d > 0 ? Vec3((cb - ca) / d) : Vec3::UnitZ();
+  return round_contact(d - ra - rb, n, ca + ra * n, Feature::face_a);
+}
+
+// A sphere s and a convex polyhedron p; the normal out of p towards s.
+template <class Body>
+PairContact sphere_polyhedron_outward(const Body& s, const Body& p, bool p_is_a) {
+  using A = typename Body::Algebra;
+  const auto& shape = p.shape();
+  const double unit = shape.unit();
+  const Vec3 c = s.sphere_centre();
+  const auto x = p.local_point(c);  // the centre in p's own frame and unit
+  const double r = s.shape().radius();
+  const Mesh& mesh = p.mesh();
+  const int faces = static_cast<int>(mesh.planes().size());
+  thread_local std::vector<double> dist;
+  dist.resize(static_cast<std::size_t>(faces));
+  int deepest = 0;
+  for (int k = 0; k < faces; ++k) {
+    dist[k] = A::distance(shape.plane(k), x);
+    if (dist[k] > dist[deepest]) deepest = k;
+  }
+  const Feature face = p_is_a ? Feature::face_a : Feature::face_b;
+  const auto answer = [&](double gap_to_p, const Vec3& n_out, Feature f) {
+    // gap_to_p: the centre's distance from p's surface (< 0 inside); n_out out of p.
+    const Vec3 surface = c - gap_to_p * n_out;  // p's nearest surface point
+    const double gap = gap_to_p - r;
+    return p_is_a ? round_contact(gap, n_out, surface, f) : round_contact(gap, -n_out, c - r * n_out, f);
+  };
+  if (!(dist[deepest] > 0)) return answer(dist[deepest] * unit, shape.normal(deepest), face);
+  for (int k = 0; k < faces; ++k) {
+    if (!(dist[k] > 0)) continue;
+    const auto& loop = mesh.faces()[k];
+    const Vec3 nk = shape.normal(k);
+    bool inside = !loop.empty();
+    for (std::size_t i = 0; inside && i < loop.size(); ++i) {
+      const auto& v0 = shape.point(loop[i]);
+      const auto& v1 = shape.point(loop[(i + 1) % loop.size()]);
+      const Vec3 side = (A::position(v1) - A::position(v0)).cross(nk);
+      inside = A::distance(A::plane_through(v0, side), x) <= 0;
+    }
+    if (inside) return answer(dist[k] * unit, nk, face);
+  }
+  // An edge or a vertex: the nearest point of each feature edge.
+  const Vec3 xc = A::position(x);
+  double best = INFINITY;
+  Vec3 nearest = Vec3::Zero();
+  for (const auto& e : mesh.edges()) {
+    const Vec3 p0 = A::position(shape.point(e[0])), d = A::position(shape.point(e[1])) - p0;
+    const double t = std::clamp((xc - p0).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    const Vec3 y = p0 + t * d;
+    const double q = A::distance2(x, A::lift(y));
+    if (q < best) best = q, nearest = y;
+  }
+  const double gap_to_p = std::sqrt(best) * unit;
+  const Vec3 n_out = (xc - nearest).normalized();
+  return answer(gap_to_p, n_out, Feature::edge_edge);
+}
+
+}  // namespace detail
+
+// Whether the pair needs the round narrowphase (either body a sphere).
+template <class Body>
+bool round_pair(const Body& a, const Body& b) {
+  return a.shape().is_sphere() || b.shape().is_sphere();
+}
+
+// A round pair's contact, in the Body frame (see the top of the file).
+template <class Body>
+PairContact round_narrowphase(const Body& a, const Body& b) {
+  if (a.shape().is_sphere() && b.shape().is_sphere()) return detail::sphere_sphere(a, b);
+  if (a.shape().is_sphere()) return detail::sphere_polyhedron_outward(a, b, false);
+  return detail::sphere_polyhedron_outward(b, a, true);
+}
+
+// The same, and its one point contact when within the band (the response's input).
+template <class Body>
+PairContact round_narrowphase(const Body& a, const Body& b, double band, std::vector<FeatureContact>* contacts) {
+  const PairContact c = round_narrowphase(a, b);
+  if (contacts && c.depth >= -band) contacts->push_back({c.contact, c.normal, c.depth, c.feature});
+  return c;
+}
+
+}  // namespace gacompare::collision
