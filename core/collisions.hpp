@@ -238,13 +238,7 @@ struct Collider {
       pairs = std::move(found.pairs);
       d.candidates = std::move(found.candidates);
       const auto away = [&](std::span<const double> grow) {
-        return [&, grow](const std::pair<int, int>& p) {
-          const auto [i, j] = p;
-          if (fixed[i] == fixed[j]) return false;
-          const int s = fixed[i] ? i : j, o = fixed[i] ? j : i;
-          const double r = radii[o] + (grow.empty() ? 0.0 : grow[o]);
-          return !reaches_static(pose[s], world[s], centres[o], r);
-        };
+        return [&, grow](const std::pair<int, int>& p) { return misses_static(pose, world, centres, p, grow); };
       };
       std::erase_if(pairs, away({}));
       std::erase_if(d.candidates, away(margin));
@@ -276,20 +270,30 @@ struct Collider {
       std::vector<typename Spheres::Sphere> spheres;
       spheres.reserve(n);
       for (std::size_t k = 0; k < n; ++k) spheres.push_back(Spheres::sphere(centres[k] - frame, setup.sphere_radius[world[k]]));
-      for (const auto& [i, j] : candidates) {
-        const bool si = setup.is_static[world[i]], sj = setup.is_static[world[j]];
+      for (const auto& p : candidates) {
+        const auto [i, j] = p;
         ++counters.broadphase_candidates;
-        if (si && sj) continue;
+        if (setup.is_static[world[i]] && setup.is_static[world[j]]) continue;
         if (!Spheres::overlap(spheres[static_cast<std::size_t>(i)], spheres[static_cast<std::size_t>(j)])) continue;
-        if (si != sj) {
-          const int st = si ? i : j, o = si ? j : i;
-          if (!reaches_static(pose[st], world[st], centres[o], setup.sphere_radius[world[o]])) continue;
-        }
+        if (misses_static(pose, world, centres, p, {})) continue;
         pairs.emplace_back(i, j);
       }
     }
     narrow(world, pose, pairs, d, profile);
     return d;
+  }
+
+  // Whether pair p of a group is a moving and a static body and the moving
+  // one's sphere (grown by grow[o] when grow is given) misses the static
+  // body's box (reaches_static).
+  bool misses_static(const std::vector<collision::Pose>& pose, World world, const std::vector<Vec3>& centres,
+                     const std::pair<int, int>& p, std::span<const double> grow) const {
+    const auto [i, j] = p;
+    const bool si = setup.is_static[world[i]];
+    if (si == static_cast<bool>(setup.is_static[world[j]])) return false;
+    const int s = si ? i : j, o = si ? j : i;
+    const double r = setup.sphere_radius[world[o]] + (grow.empty() ? 0.0 : grow[o]);
+    return !reaches_static(pose[s], world[s], centres[o], r);
   }
 
   // Each body's bounding-sphere centre in the world at its pose.
