@@ -6,7 +6,8 @@
 //
 //   build/release/bench/friction_table [scene.json ...]
 //
-// Without arguments: the three bundled friction scenes.
+// Without arguments: the three bundled friction scenes, the rolling spheres,
+// the top on the floor and the mixed pile (core/friction_answers.hpp).
 #include "cga/backend.hpp"
 #include "compare/bullet_world.hpp"
 #include "core/error.hpp"
@@ -26,7 +27,8 @@ int main(int argc, char** argv) {
   std::vector<std::filesystem::path> files;
   for (int i = 1; i < argc; ++i) files.emplace_back(argv[i]);
   if (files.empty())
-    for (const char* name : {"friction_incline_stick", "friction_incline_slide", "friction_floor_stop"})
+    for (const char* name : {"friction_incline_stick", "friction_incline_slide", "friction_floor_stop", "sphere_roll_incline",
+                             "sphere_slide_to_roll", "top_on_floor", "mixed_pile"})
       files.push_back(std::filesystem::path(GACOMPARE_DATA_DIR) / "scenes" / (std::string(name) + ".json"));
   try {
     std::printf("| scene | figure | analytic | traditional | cga | Bullet |\n|---|---|---|---|---|---|\n");
@@ -37,7 +39,7 @@ int main(int argc, char** argv) {
       std::vector<std::vector<core::FrictionFigure>> figures;
       for (const auto& run : runs) {
         if (run.error) throw std::runtime_error(scene.name + " (" + run.backend + "): " + *run.error);
-        figures.push_back(core::friction_figures(scene, run));
+        figures.push_back(core::analytic_figures(scene, run));
       }
       for (std::size_t k = 0; k < figures[0].size(); ++k) {
         const auto& f = figures[0][k];
