@@ -45,7 +45,7 @@ struct RigidBodies {
   };
 
   static Model build(const core::Scene& scene, const std::vector<core::BodyProperties>& props);
-  // Bodies `which` (ascending) of m as a model of their own, in that order
+  // Bodies `which` (in any order) of m as a model of their own, in that order
   // (core::copy_bodies): an island integrated alone. No initial state (y0).
   static Model subset(const Model& m, std::span<const int> which);
   static std::size_t state_size(const Model& m) { return m.stride * m.bodies.size(); }

@@ -36,7 +36,7 @@ struct BodyEffects {
 };
 BodyEffects body_effects(const Scene& scene);
 
-// Bodies `which` (ascending scene indices) of model `from` into `to`, whose
+// Bodies `which` (scene indices, any order) of model `from` into `to`, whose
 // settings the backend has already copied: the bodies' entries and names, the
 // effects, and the applied forces on those bodies re-indexed (body k of `to` is
 // body which[k] of `from`). The model of an island integrated on its own
@@ -53,8 +53,11 @@ void copy_bodies(const Model& from, std::span<const int> which, Model& to) {
   to.effects = from.effects;
   to.effects.pushes.clear();
   for (auto push : from.effects.pushes) {
-    const auto it = std::lower_bound(which.begin(), which.end(), static_cast<int>(push.body));
-    if (it == which.end() || *it != static_cast<int>(push.body)) continue;
+    // A linear search: `which` need not be ascending (an island lists its
+    // moving bodies, then its static ones), and a binary search over it
+    // dropped the pushes of moving bodies numbered above a static one.
+    const auto it = std::find(which.begin(), which.end(), static_cast<int>(push.body));
+    if (it == which.end()) continue;
     push.body = static_cast<std::size_t>(it - which.begin());
     to.effects.pushes.push_back(push);
   }
