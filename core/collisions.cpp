@@ -19,6 +19,8 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["impact_searches_unresolved"] = unresolved_searches;
   out["impact_interpolated_evaluations"] = impact_interpolations;
   out["impact_interpolation_misses"] = impact_interpolation_misses;
+  out["impact_bodies_integrated"] = impact_bodies_integrated;
+  out["impact_island_misses"] = impact_island_misses;
   out["contacts"] = contacts;
   out["resting_contacts"] = resting_contacts;
   out["impulses"] = impulses;

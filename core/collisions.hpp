@@ -101,6 +101,9 @@ struct CollisionCounters {
   std::uint64_t broadphase_tree_updates = 0, broadphase_pairs_kept = 0;  // summed over detections
   std::uint64_t impact_searches = 0, impact_iterations = 0, impact_evaluations = 0, unresolved_searches = 0;
   std::uint64_t impact_interpolations = 0, impact_interpolation_misses = 0;  // impact_motion "interpolate"
+  // Bodies integrated by the searches' trials (the deep pairs' bodies, or an
+  // island when the pairs' time missed the band on the island's motion).
+  std::uint64_t impact_bodies_integrated = 0, impact_island_misses = 0;
   std::uint64_t contacts = 0, impulses = 0, resting_contacts = 0, sweeps = 0, corrections = 0;
   std::uint64_t warm_started = 0, sweep_cap_hits = 0, correction_cap_hits = 0, unresolved_impacts = 0;
   // Islands (core/islands.hpp, core/collision_step.hpp): the islands with a

@@ -169,8 +169,46 @@ TYPED_TEST_P(CollisionStepCases, StaticBoxFilterKeepsEveryPairInContact) {
   EXPECT_GT(touching, 3);
 }
 
+// A time-of-impact search's trials integrate the deep pair's bodies alone
+// (core/collision_step.hpp, impact): a cube dropped beside a row of three
+// resting cubes shares their island (the bounding spheres overlap, the boxes
+// are 5 cm apart), yet each trial integrates the falling cube and the slab
+// only, and the island is integrated once per search, to the time found
+// (fixed-step RK4: the pair's bodies move bit for bit as in the island, so
+// no time found misses the band there). And the falling cube moves bit for
+// bit as it does with no row beside it: the search times the pair that went
+// too deep, not the row's resting contacts (already in the band, they made a
+// search over every hit stop short of the impact: 21 searches instead of 15,
+// and the cube 2e-5 m off at its first bounce).
+TYPED_TEST_P(CollisionStepCases, ImpactTrialsIntegrateOnlyTheDeepPairsBodies) {
+  core::Scene alone = this->drop(), beside = alone;
+  for (int k = 0; k < 3; ++k) {
+    core::Body cube = alone.bodies[1];
+    cube.name = "row" + std::to_string(k);
+    cube.position = {0.33 + 0.25 * k, 0, 0.1};
+    cube.orientation = {1, 0, 0, 0};
+    cube.velocity = cube.angular_velocity = core::Vec3::Zero();
+    beside.bodies.push_back(cube);
+  }
+  const core::Run ra = core::simulate<TypeParam>(alone), rb = core::simulate<TypeParam>(beside);
+  ASSERT_FALSE(ra.error || rb.error);
+  const auto& k = rb.counters;
+  ASSERT_GT(k.at("impact_searches"), 0u);
+  EXPECT_GE(k.at("largest_island"), 4u);
+  EXPECT_EQ(k.at("impact_island_misses"), 0u);
+  EXPECT_EQ(k.at("impact_state_evaluations"), k.at("impact_searches") - k.at("impact_searches_unresolved"));
+  // Trials: the cube and the slab; island integrations: four cubes and the slab.
+  EXPECT_EQ(k.at("impact_bodies_integrated"), 2 * k.at("impact_iterations") + 5 * k.at("impact_state_evaluations"));
+  EXPECT_EQ(k.at("impact_iterations"), ra.counters.at("impact_iterations"));
+  ASSERT_EQ(ra.samples.size(), rb.samples.size());
+  for (std::size_t s = 0; s < ra.samples.size(); ++s) {
+    EXPECT_EQ(rb.samples[s].bodies[1].position, ra.samples[s].bodies[1].position) << "t=" << ra.samples[s].t;
+    EXPECT_EQ(rb.samples[s].bodies[1].orientation, ra.samples[s].bodies[1].orientation) << "t=" << ra.samples[s].t;
+  }
+}
+
 REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, FarApartIslandsGiveWhatEachGivesAlone,
                             StepLimitOnlyWhereThereIsSomethingToHit, BodyTooFastForAnyStepStopsTheRunNamingIt,
-                            StaticBoxFilterKeepsEveryPairInContact);
+                            StaticBoxFilterKeepsEveryPairInContact, ImpactTrialsIntegrateOnlyTheDeepPairsBodies);
 
 }  // namespace gacompare::testing
