@@ -400,11 +400,23 @@ int list_scenes(const fs::path& dir) {
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().extension() == ".json") files.push_back(e.path());
   std::sort(files.begin(), files.end());
+  // Listing runs nothing, so a scene over the run budgets (--max-samples,
+  // --max-steps, --max-memory) is listed: `run` and `compare` refuse it with
+  // its numbers. A scene that does not load is named on stderr with its
+  // reason and the others are still listed; then the exit code is 2.
+  const core::Limits unlimited{INFINITY, INFINITY, INFINITY};
+  int broken = 0;
   for (const auto& f : files) {
-    const auto s = core::load_scene(f, limits);
-    std::cout << f.string() << "\t" << s.name << "\t" << s.description << "\n";
+    try {
+      const auto s = core::load_scene(f, unlimited);
+      std::cout << f.string() << "\t" << s.name << "\t" << s.description << "\n";
+    } catch (const gacompare::Error& e) {
+      if (e.kind() != ErrorKind::input) throw;
+      std::cerr << "gacompare: list: " << e.what() << "\n";
+      ++broken;
+    }
   }
-  return 0;
+  return broken ? 2 : 0;
 }
 
 }  // namespace

@@ -112,10 +112,10 @@ TYPED_TEST_P(FrictionCases, FrictionOffIsBitIdenticalAndAddsNoRows) {
 
 // A solid sphere sent along the floor without spin slides, then rolls: speed
 // v0 − μ g t while it slides, ω r = v at t* = 2 v0/(7 μ g), 5/7 v0 after. To
-// 1e-3 relative (the bound; measured 1.4e-5: the step in which the
-// slip ends is one collision step of friction impulse, which the solver
-// clamps at the slip's end, so what is left is the friction displacement's
-// half step).
+// 1e-3 relative (the bound; measured 1.4e-5: in each step the ball
+// sinks ½ g h² = 4.9e-6 m into the floor before its impulse, and the contact
+// point is midway through that overlap, so it rolls on a radius 2.45e-6 m
+// short: v/(ω r) = 1 − 2.45e-5, and 5/7 becomes 1/(1 + 2/5 (r/r')²)).
 TYPED_TEST_P(FrictionCases, SphereSentAlongFloorSlidesThenRollsAtFiveSevenths) {
   this->expect_answers("sphere_slide_to_roll");
   const core::Run run = core::simulate<TypeParam>(this->scene("sphere_slide_to_roll"));

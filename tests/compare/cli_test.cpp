@@ -513,6 +513,28 @@ TEST(Cli, VersionHelpAndList) {
   EXPECT_NE(l.out.find("projectile_linear_drag"), std::string::npos);
 }
 
+// `list` runs nothing: a scene over the run budgets is listed (and `run`
+// refuses it, exit 2, with its numbers); a broken scene is named in one line
+// on stderr, the others still listed, exit 2.
+TEST(Cli, ListShowsScenesOverBudgetAndNamesBrokenOnes) {
+  const fs::path dir = fresh_dir("list");
+  fs::create_directories(dir);
+  std::ifstream in(std::string(GACOMPARE_DATA_DIR) + "/scenes/kepler.json");
+  nlohmann::json long_one = nlohmann::json::parse(in);
+  long_one["name"] = "very_long";
+  long_one["duration"] = 1e9;
+  std::ofstream(dir / "a_long.json") << long_one.dump();
+  std::ofstream(dir / "b_broken.json") << "{\"name\": \"broken\", \"duration\": ";
+  const Result l = gacompare("list --scenes " + dir.string());
+  EXPECT_EQ(l.code, 2) << l.err;
+  EXPECT_NE(l.out.find("very_long"), std::string::npos) << l.out;
+  EXPECT_EQ(std::count(l.err.begin(), l.err.end(), '\n'), 1) << l.err;
+  EXPECT_NE(l.err.find("b_broken.json"), std::string::npos) << l.err;
+  const Result r = gacompare("run --backend traditional " + (dir / "a_long.json").string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("--max-samples"), std::string::npos) << r.err;
+}
+
 }  // namespace
 
 // compare --accuracy (compare/accuracy.hpp): a scene with collisions is refused
