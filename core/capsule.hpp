@@ -199,19 +199,24 @@ PairContact capsule_polyhedron_outward(const Body& c, const Body& p, bool p_is_a
     else if (d1[k] > 0) leave = std::min(leave, d0[k] / (d0[k] - d1[k]));
   }
   const Feature face = p_is_a ? Feature::face_a : Feature::face_b;
+  // Candidates within rounding of the best are ties, kept in the order tried
+  // (ends, then edges; faces, then edges), so that a segment parallel to a
+  // face or an edge, whose closest points are a piece of it, gets the same
+  // point and axis in both backends.
+  const double tie = 1e-3 * band;
   PointNearest q;  // of the segment point `at` (pair frame)
   Vec3 at = Vec3::Zero();
   if (enter > leave) {
     // Apart: the ends, then every feature edge against the segment.
     q = point_polyhedron(p, seg.p0, p_is_a), at = seg.p0;
     const PointNearest q1 = point_polyhedron(p, seg.at(1), p_is_a);
-    if (q1.gap_to_p < q.gap_to_p) q = q1, at = seg.at(1);
+    if (q1.gap_to_p < q.gap_to_p - tie) q = q1, at = seg.at(1);
     for (const auto& e : mesh.edges()) {
       const Vec3 v0 = A::position(shape.point(e[0])), dv = A::position(shape.point(e[1])) - v0;
       const auto [s, t] = closest_segment_parameters<A>(y0, dy, v0, dv);
       const Vec3 ys = y0 + s * dy, vt = v0 + t * dv;
       const double gap = std::sqrt(A::distance2(A::lift(ys), A::lift(vt))) * unit;
-      if (gap < q.gap_to_p) {
+      if (gap < q.gap_to_p - tie) {
         at = seg.at(s);
         q = {gap, Vec3((ys - vt).normalized()), at - gap * Vec3((ys - vt).normalized()), Feature::edge_edge};
       }
@@ -223,9 +228,10 @@ PairContact capsule_polyhedron_outward(const Body& c, const Body& p, bool p_is_a
     Feature f = face;
     for (int k = 0; k < faces; ++k) {
       const double o = -std::min(d0[k], d1[k]);
-      if (o < least) {
+      if (o < least - tie / unit) {
         least = o, axis = shape.normal(k), f = face;
-        at = d0[k] < d1[k] ? seg.p0 : d1[k] < d0[k] ? seg.at(1) : seg.at(0.5);
+        // The deeper end; parallel to the face (to rounding), the middle of the piece inside.
+        at = d0[k] < d1[k] - tie / unit ? seg.p0 : d1[k] < d0[k] - tie / unit ? seg.at(1) : seg.at(0.5 * (enter + leave));
       }
     }
     const double dyy = dy.squaredNorm();
@@ -243,7 +249,7 @@ PairContact capsule_polyhedron_outward(const Body& c, const Body& p, bool p_is_a
       const double su = A::distance(plane, x0);
       for (const double sign : {1.0, -1.0}) {
         const double o = sign > 0 ? hi - su : su - lo;
-        if (o < least) {
+        if (o < least - tie / unit) {
           least = o, axis = sign * u, f = Feature::edge_edge;
           at = seg.at(closest_segment_parameters<A>(y0, dy, v0, dv).s);
         }
