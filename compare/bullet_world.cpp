@@ -258,11 +258,20 @@ core::Mesh centred_mesh(const core::Body& body) {
 // The largest ball about the centre of mass inside the body.
 double inradius(const core::Mesh& centred) { return core::inradius(centred, Vec3::Zero()); }
 
-// Bullet's own shape for the body: btSphereShape for a sphere (whose margin is
-// its radius, so it keeps Bullet's default), else the hull of the vertices in
-// the principal frame with no margin (top of file).
+// Bullet's own shape for the body: btSphereShape for a sphere, btCapsuleShapeZ
+// for a capsule (whose margins are their radius, so they keep Bullet's
+// default; a capsule's inertia is diagonal about its axis, so the principal
+// frame is the body's and the axis z; its `height` is the length between the
+// hemispheres' centres, as ours), else the hull of the vertices in the
+// principal frame with no margin (top of file).
 std::unique_ptr<btCollisionShape> bullet_shape(const core::Mesh& mesh, const Eigen::Matrix3d& principal) {
   if (mesh.is_sphere()) return std::make_unique<btSphereShape>(mesh.sphere_radius());
+  if (mesh.is_capsule()) {
+    const Vec3 h = principal.transpose() * mesh.capsule_half_axis();
+    if (h.head<2>().norm() > 1e-12 * h.norm())
+      throw input_error(mesh.name() + ": bullet: a capsule's axis must be a principal axis of the body (z)");
+    return std::make_unique<btCapsuleShapeZ>(mesh.sphere_radius(), 2 * h.norm());
+  }
   auto hull = std::make_unique<btConvexHullShape>();
   for (const Vec3& v : mesh.vertices()) hull->addPoint(to_bullet(Vec3(principal.transpose() * v)), false);
   hull->setMargin(0);

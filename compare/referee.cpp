@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 
+#include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
@@ -54,16 +55,28 @@ std::string pair_text(const char* who, const std::string& a, const Pose& pa, con
 // ---------------------------------------------------------------------------------
 
 struct FclShape::Impl {
-  std::shared_ptr<const fcl::CollisionGeometryd> geometry;  // fcl::Convexd, or fcl::Sphered for a round shape
+  std::shared_ptr<const fcl::CollisionGeometryd> geometry;  // fcl::Convexd, or fcl::Sphered / fcl::Capsuled for a round shape
 };
 
+namespace {
+void require_referee_round(const core::Mesh& mesh) {
+  if (mesh.sphere_centre() != Vec3::Zero() || mesh.capsule_half_axis().head<2>() != Eigen::Vector2d::Zero())
+    throw input_error(mesh.name() + ": the referees need a round shape about its origin, a capsule along z");
+}
+}  // namespace
+
 FclShape::FclShape(const core::Mesh& mesh) : name_(mesh.name()), size_(mesh.size()) {
-  if (mesh.is_sphere()) {
-    // FCL's own primitive, not the proxy polyhedron (core/mesh.hpp); about the
-    // mesh's origin, where make_sphere puts the centre.
-    if (mesh.sphere_centre() != Vec3::Zero()) throw input_error(mesh.name() + ": the referees need a sphere about its origin");
+  if (mesh.is_round()) {
+    // FCL's own primitives, not the proxy polyhedron (core/mesh.hpp); about the
+    // mesh's origin, where make_sphere and make_capsule put the centre.
+    // fcl::Capsule(radius, lz): lz is the length between the hemispheres'
+    // centres, along z (its AABB is ½ lz + radius along z), as ours.
+    require_referee_round(mesh);
     auto impl = std::make_shared<Impl>();
-    impl->geometry = std::make_shared<const fcl::Sphered>(mesh.sphere_radius());
+    if (mesh.is_sphere())
+      impl->geometry = std::make_shared<const fcl::Sphered>(mesh.sphere_radius());
+    else
+      impl->geometry = std::make_shared<const fcl::Capsuled>(mesh.sphere_radius(), 2 * mesh.capsule_half_axis().z());
     impl_ = std::move(impl);
     return;
   }
@@ -170,16 +183,22 @@ PairContact fcl_collide(const FclShape& a, const Pose& pa, const FclShape& b, co
 // ---------------------------------------------------------------------------------
 
 struct BulletShape::Impl {
-  std::unique_ptr<btConvexShape> shape;  // btConvexHullShape, or btSphereShape for a round shape
+  std::unique_ptr<btConvexShape> shape;  // btConvexHullShape, or btSphereShape / btCapsuleShapeZ for a round shape
 };
 
 BulletShape::BulletShape(const core::Mesh& mesh) : name_(mesh.name()), size_(mesh.size()) {
   auto impl = std::make_shared<Impl>();
-  if (mesh.is_sphere()) {
-    // Bullet's primitive: a point grown by its margin, the radius (so GJK runs
-    // on the centre and adds the radius back: exact).
-    if (mesh.sphere_centre() != Vec3::Zero()) throw input_error(mesh.name() + ": the referees need a sphere about its origin");
-    impl->shape = std::make_unique<btSphereShape>(mesh.sphere_radius());
+  if (mesh.is_round()) {
+    // Bullet's primitives: a point (a segment) grown by its margin, the radius
+    // (so GJK runs on the centre or the segment and adds the radius back:
+    // exact). btCapsuleShapeZ(radius, height): height is the length between
+    // the hemispheres' centres along z ("the total height is height +
+    // 2 radius"), as ours.
+    require_referee_round(mesh);
+    if (mesh.is_sphere())
+      impl->shape = std::make_unique<btSphereShape>(mesh.sphere_radius());
+    else
+      impl->shape = std::make_unique<btCapsuleShapeZ>(mesh.sphere_radius(), 2 * mesh.capsule_half_axis().z());
     impl_ = std::move(impl);
     return;
   }

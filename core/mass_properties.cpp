@@ -29,6 +29,28 @@ MassProperties from_moments(double volume, const Vec3& first, const Eigen::Matri
   m.inertia = (m.inertia + m.inertia.transpose()) / 2;  // exactly symmetric for the eigen solver
   return m;
 }
+
+// A capsule, exact (core/mesh.hpp make_capsule): a cylinder of radius r and
+// length L and two hemispheres. About the axis the cylinder gives ½ m_c r²
+// and the hemispheres together a sphere's 2/5 m_s r². Across it the cylinder
+// gives m_c (3r² + L²)/12; each hemisphere (mass ½ m_s) has 2/5 (½ m_s) r²
+// about a diameter of its flat face, its centre of mass 3r/8 from that face,
+// so about the capsule's centre, ½L + 3r/8 away: 2/5 r² − (3r/8)² +
+// (½L + 3r/8)², per unit mass; for both, m_s (2/5 r² + L²/4 + 3Lr/8).
+MassProperties capsule_mass_properties(const Mesh& mesh, double density) {
+  const double r = mesh.sphere_radius(), l = 2 * mesh.capsule_half_axis().norm();
+  const Vec3 u = mesh.capsule_half_axis().normalized();
+  const double cylinder = std::numbers::pi * r * r * l, spheres = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double mc = density * cylinder, ms = density * spheres;
+  const double along = 0.5 * mc * r * r + 0.4 * ms * r * r;
+  const double across = mc * (3 * r * r + l * l) / 12 + ms * (0.4 * r * r + 0.25 * l * l + 0.375 * l * r);
+  MassProperties m;
+  m.volume = cylinder + spheres;
+  m.mass = density * m.volume;
+  m.centre_of_mass = mesh.sphere_centre();
+  m.inertia = across * Eigen::Matrix3d::Identity() + (along - across) * (u * u.transpose());
+  return m;
+}
 }  // namespace
 
 // §2.3.3 asks for volume, centre of mass and inertia; the report integrates on a
@@ -52,6 +74,7 @@ MassProperties mass_properties(const Mesh& mesh, double density) {
     m.inertia = (0.4 * m.mass * r * r) * Eigen::Matrix3d::Identity();
     return m;
   }
+  if (mesh.is_capsule()) return capsule_mass_properties(mesh, density);
   const auto& v = mesh.vertices();
   Vec3 o = Vec3::Zero();
   for (const auto& p : v) o += p;

@@ -283,6 +283,7 @@ Mesh Mesh::transformed(const Eigen::Matrix3d& rotation, const Vec3& translation)
   Eigen::AlignedBox3d box;
   for (auto& p : m.vertices_) box.extend(p = rotation * p + translation);
   m.sphere_centre_ = rotation * m.sphere_centre_ + translation;
+  m.capsule_half_axis_ = rotation * m.capsule_half_axis_;
   m.size_ = box.diagonal().norm();
   const auto& v = m.vertices_;
   std::vector<char> placed(m.planes_.size(), 0);
@@ -354,15 +355,43 @@ Mesh make_icosahedron(double radius) {
 
 // --- convex hull (Qhull) ------------------------------------------------------------
 
-Mesh make_sphere(double radius) {
+namespace {
+// The 26 directions of make_sphere's proxy at radius r: all (z_sign 0), or
+// those with z ≥ 0 (z_sign 1) or z ≤ 0 (−1).
+std::vector<Vec3> sphere_points(double radius, int z_sign) {
   std::vector<Vec3> points;
   for (int x = -1; x <= 1; ++x)
     for (int y = -1; y <= 1; ++y)
       for (int z = -1; z <= 1; ++z)
-        if (x != 0 || y != 0 || z != 0) points.push_back(radius * Vec3(x, y, z).normalized());
+        if ((x != 0 || y != 0 || z != 0) && z * z_sign >= 0) points.push_back(radius * Vec3(x, y, z).normalized());
+  return points;
+}
+}  // namespace
+
+Mesh make_sphere(double radius) {
+  std::vector<Vec3> points = sphere_points(radius, 0);
   Mesh m = convex_hull(points, "sphere radius " + fmt(radius));
   m.name_ = "sphere radius " + fmt(radius);
   m.sphere_radius_ = radius;
+  return m;
+}
+
+// The hemispheres' proxies 26 points apart along z, the equator ring once at
+// each end: every vertex on the capsule, ±r across the axis (the rings) and
+// ±(½L + r) along it (the poles), so the proxy's box and Welzl's sphere about
+// its vertices are the capsule's own (the poles are the farthest pair, and
+// every other vertex lies within ½L + r of the centre).
+Mesh make_capsule(double radius, double length) {
+  if (length == 0) return make_sphere(radius);
+  const double h = 0.5 * length;
+  std::vector<Vec3> points;
+  for (const Vec3& p : sphere_points(radius, 1)) points.push_back(p + Vec3(0, 0, h));
+  for (const Vec3& p : sphere_points(radius, -1)) points.push_back(p - Vec3(0, 0, h));
+  const std::string name = "capsule radius " + fmt(radius) + " length " + fmt(length);
+  Mesh m = convex_hull(points, name);
+  m.name_ = name;
+  m.sphere_radius_ = radius;
+  m.capsule_half_axis_ = Vec3(0, 0, h);
   return m;
 }
 
@@ -532,12 +561,18 @@ Mesh mesh_for(const Shape& shape) {
     Mesh operator()(const HullShape& s) const { return s.mesh ? *s.mesh : convex_hull(s.points); }
     Mesh operator()(const MeshShape& s) const { return s.mesh ? *s.mesh : load_obj(s.file); }
     Mesh operator()(const SphereShape& s) const { return make_sphere(s.radius); }
+    Mesh operator()(const CapsuleShape& s) const { return make_capsule(s.radius, s.length); }
   };
   return std::visit(Build{}, shape);
 }
 
 double inradius(const Mesh& mesh, const Vec3& centre) {
   if (mesh.is_sphere()) return mesh.sphere_radius() - (centre - mesh.sphere_centre()).norm();
+  if (mesh.is_capsule()) {
+    const Vec3 h = mesh.capsule_half_axis(), x = centre - mesh.sphere_centre();
+    const double t = std::clamp(x.dot(h) / h.squaredNorm(), -1.0, 1.0);
+    return mesh.sphere_radius() - (x - t * h).norm();
+  }
   double r = INFINITY;
   for (const auto& p : mesh.planes()) r = std::min(r, -p.distance(centre));
   return r;

@@ -98,9 +98,18 @@ class Mesh {
   // plots) works unchanged. What must be exact reads the radius instead:
   // mass properties, the inradius, the narrowphase (core/round.hpp), the
   // referees and Bullet. 0 for a polyhedron.
+  //
+  // A capsule (make_capsule) is carried the same way: the points within r of
+  // a segment, sphere_centre() its midpoint and capsule_half_axis() the
+  // vector from there to one end (both moved by transformed()); its proxy's
+  // vertices lie on the capsule, at ±r across the axis at both ends and at
+  // ±(½L + r) along it. sphere_radius() is the radius of either round shape.
   double sphere_radius() const { return sphere_radius_; }
   const Vec3& sphere_centre() const { return sphere_centre_; }  // moved with the vertices by transformed()
-  bool is_sphere() const { return sphere_radius_ > 0; }
+  const Vec3& capsule_half_axis() const { return capsule_half_axis_; }  // zero for a sphere
+  bool is_round() const { return sphere_radius_ > 0; }
+  bool is_sphere() const { return is_round() && capsule_half_axis_ == Vec3::Zero(); }
+  bool is_capsule() const { return is_round() && capsule_half_axis_ != Vec3::Zero(); }
 
  private:
   Mesh() = default;  // only from_triangles makes one, so every Mesh is valid
@@ -119,7 +128,14 @@ class Mesh {
   bool convex_ = false;
   double sphere_radius_ = 0;
   Vec3 sphere_centre_ = Vec3::Zero();
+  Vec3 capsule_half_axis_ = Vec3::Zero();
   friend Mesh make_sphere(double radius);
+// A capsule of this radius about the segment of this length along z, centred
+// on the origin: length 0 is make_sphere(radius). Its proxy is the hull of
+// make_sphere's points with z ≥ 0 raised by ½ length and those with z ≤ 0
+// lowered by it (see Mesh::capsule_half_axis()).
+Mesh make_capsule(double radius, double length);
+  friend Mesh make_capsule(double radius, double length);
 };
 
 // --- the built-in shapes of the scene format (core/scene.hpp) --------------------
@@ -136,6 +152,11 @@ Mesh make_icosahedron(double radius);    // centre-to-vertex radius
 // points ±r on the axes, r(±1, ±1, 0)/√2 (and permutations), r(±1, ±1, ±1)/√3
 // (see Mesh::sphere_radius()).
 Mesh make_sphere(double radius);
+// A capsule of this radius about the segment of this length along z, centred
+// on the origin: length 0 is make_sphere(radius). Its proxy is the hull of
+// make_sphere's points with z ≥ 0 raised by ½ length and those with z ≤ 0
+// lowered by it (see Mesh::capsule_half_axis()).
+Mesh make_capsule(double radius, double length);
 
 // The convex hull of a point set, by Qhull (reentrant libqhull_r). Points inside
 // or on the hull are not vertices. Throws input_error naming `what` when the
@@ -155,7 +176,8 @@ Mesh parse_obj(const std::string& text, const std::string& name);
 Mesh mesh_for(const Shape& shape);
 
 // The radius of the largest ball about `centre` inside the convex body (a
-// sphere's own radius about its centre; a polyhedron's nearest face plane, ≤ 0
+// sphere's own radius about its centre, a capsule's less the distance to its
+// segment; a polyhedron's nearest face plane, ≤ 0
 // when the centre is outside): the tunnelling rule and the budgets use it.
 double inradius(const Mesh& mesh, const Vec3& centre);
 

@@ -67,15 +67,24 @@ PairContact sphere_sphere(const Body& a, const Body& b) {
   return round_contact(d - ra - rb, n, ca + ra * n, Feature::face_a);
 }
 
-// A sphere s and a convex polyhedron p; the normal out of p towards s.
+// A point's nearest point of a convex polyhedron p (top of the file), in the
+// pair's frame: its distance from p's surface (< 0 inside), the unit normal
+// out of p at that surface point, the point itself, and the feature (face of
+// p, or edge_edge for an edge or vertex). The sphere and the capsule
+// (core/capsule.hpp) take their contacts from it.
+struct PointNearest {
+  double gap_to_p = 0;
+  Vec3 n_out = Vec3::Zero();
+  Vec3 surface = Vec3::Zero();
+  Feature feature = Feature::none;
+};
+
 template <class Body>
-PairContact sphere_polyhedron_outward(const Body& s, const Body& p, bool p_is_a) {
+PointNearest point_polyhedron(const Body& p, const Vec3& c, bool p_is_a) {
   using A = typename Body::Algebra;
   const auto& shape = p.shape();
   const double unit = shape.unit();
-  const Vec3 c = s.sphere_centre();
-  const auto x = p.local_point(c);  // the centre in p's own frame and unit
-  const double r = s.shape().radius();
+  const auto x = p.local_point(c);  // the point in p's own frame and unit
   const Mesh& mesh = p.mesh();
   const int faces = static_cast<int>(mesh.planes().size());
   thread_local std::vector<double> dist;
@@ -87,10 +96,7 @@ PairContact sphere_polyhedron_outward(const Body& s, const Body& p, bool p_is_a)
   }
   const Feature face = p_is_a ? Feature::face_a : Feature::face_b;
   const auto answer = [&](double gap_to_p, const Vec3& n_out, Feature f) {
-    // gap_to_p: the centre's distance from p's surface (< 0 inside); n_out out of p.
-    const Vec3 surface = c - gap_to_p * n_out;  // p's nearest surface point
-    const double gap = gap_to_p - r;
-    return p_is_a ? round_contact(gap, n_out, surface, f) : round_contact(gap, -n_out, c - r * n_out, f);
+    return PointNearest{gap_to_p, n_out, c - gap_to_p * n_out, f};
   };
   if (!(dist[deepest] > 0)) return answer(dist[deepest] * unit, shape.normal(deepest), face);
   for (int k = 0; k < faces; ++k) {
@@ -122,28 +128,58 @@ PairContact sphere_polyhedron_outward(const Body& s, const Body& p, bool p_is_a)
   return answer(gap_to_p, n_out, Feature::edge_edge);
 }
 
+// A ball of radius r about c (a sphere, or a capsule's segment point) against
+// p, from c's nearest point q of p: the normal out of p towards the ball.
+inline PairContact ball_polyhedron(const PointNearest& q, const Vec3& c, double r, bool p_is_a) {
+  const double gap = q.gap_to_p - r;
+  return p_is_a ? round_contact(gap, q.n_out, q.surface, q.feature) : round_contact(gap, -q.n_out, c - r * q.n_out, q.feature);
+}
+
+// A sphere s and a convex polyhedron p; the normal out of p towards s.
+template <class Body>
+PairContact sphere_polyhedron_outward(const Body& s, const Body& p, bool p_is_a) {
+  const Vec3 c = s.sphere_centre();
+  return ball_polyhedron(point_polyhedron(p, c, p_is_a), c, s.shape().radius(), p_is_a);
+}
+
 }  // namespace detail
 
-// Whether the pair needs the round narrowphase (either body a sphere).
+}  // namespace gacompare::collision
+
+// Capsules build on the functions above (and are included here only).
+#include "core/capsule.hpp"
+
+namespace gacompare::collision {
+
+// Whether the pair needs the round narrowphase (either body a sphere or a capsule).
 template <class Body>
 bool round_pair(const Body& a, const Body& b) {
-  return a.shape().is_sphere() || b.shape().is_sphere();
+  return a.mesh().is_round() || b.mesh().is_round();
 }
 
-// A round pair's contact, in the Body frame (see the top of the file).
-template <class Body>
-PairContact round_narrowphase(const Body& a, const Body& b) {
-  if (a.shape().is_sphere() && b.shape().is_sphere()) return detail::sphere_sphere(a, b);
-  if (a.shape().is_sphere()) return detail::sphere_polyhedron_outward(a, b, false);
-  return detail::sphere_polyhedron_outward(b, a, true);
-}
-
-// The same, and its one point contact when within the band (the response's input).
+// A round pair's contact, in the Body frame (see the top of the file), and
+// its point contacts for the response when within the band: one (a sphere
+// touches a convex body at one point), or two where a capsule lies along a
+// face or along another capsule (core/capsule.hpp).
 template <class Body>
 PairContact round_narrowphase(const Body& a, const Body& b, double band, std::vector<FeatureContact>* contacts) {
-  const PairContact c = round_narrowphase(a, b);
+  const bool ca = a.mesh().is_capsule(), cb = b.mesh().is_capsule();
+  if (ca || cb) return detail::capsule_narrowphase(a, b, band, contacts);
+  PairContact c;
+  if (a.shape().is_sphere() && b.shape().is_sphere())
+    c = detail::sphere_sphere(a, b);
+  else if (a.shape().is_sphere())
+    c = detail::sphere_polyhedron_outward(a, b, false);
+  else
+    c = detail::sphere_polyhedron_outward(b, a, true);
   if (contacts && c.depth >= -band) contacts->push_back({c.contact, c.normal, c.depth, c.feature});
   return c;
+}
+
+// The contact alone.
+template <class Body>
+PairContact round_narrowphase(const Body& a, const Body& b) {
+  return round_narrowphase(a, b, 0, nullptr);
 }
 
 }  // namespace gacompare::collision

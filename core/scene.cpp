@@ -373,8 +373,8 @@ constexpr std::array<std::string_view, 3> kDrift = {"off", "baumgarte", "project
 constexpr std::array<std::string_view, 2> kGeneratorTypes = {"particle_net", "particle_chain"};
 constexpr std::array<std::string_view, 6> kMethods = {
     "euler", "rk4", "rk4_doubling", "cash_karp45", "symplectic_euler", "velocity_verlet"};
-constexpr std::array<std::string_view, 8> kShapes = {"box",         "tetrahedron", "pyramid", "octahedron",
-                                                     "icosahedron", "hull",        "mesh",    "sphere"};
+constexpr std::array<std::string_view, 9> kShapes = {"box",  "tetrahedron", "pyramid", "octahedron", "icosahedron",
+                                                     "hull", "mesh",        "sphere",  "capsule"};
 
 template <std::size_t N>
 using Keys = std::array<std::string_view, N>;
@@ -645,8 +645,8 @@ class Loader {
  private:
   // A shape key of the scene format beside "position" and "orientation".
   PlacedShape placed_shape(const Val& v) {
-    static constexpr Keys<10> keys = {"box",  "tetrahedron", "pyramid", "octahedron", "icosahedron",
-                                      "hull", "mesh",        "sphere",  "position",   "orientation"};
+    static constexpr Keys<11> keys = {"box",    "tetrahedron", "pyramid",  "octahedron", "icosahedron", "hull",
+                                      "mesh",   "sphere",      "capsule",  "position",   "orientation"};
     const std::string what = "an object with one shape key (" + join(kShapes) + "), \"position\" and optionally \"orientation\"";
     Obj o(v, keys, what);
     json only_shape = json::object();
@@ -677,6 +677,14 @@ class Loader {
     if (key == "octahedron") return OctahedronShape{length(x)};
     if (key == "icosahedron") return IcosahedronShape{length(x)};
     if (key == "sphere") return SphereShape{length(x)};
+    if (key == "capsule") {
+      // [r, L]: L = 0 is accepted, and is the sphere of radius r (make_capsule).
+      array_of(x, 2, "an array [radius, length]: radius > 0, length >= 0");
+      const double r = length(x.at(0));
+      const double l = number(x.at(1), Range::non_negative);
+      if (l > kMaxLength) x.at(1).expected("a length in [0, 1e26] m (0: a sphere)");
+      return CapsuleShape{r, l};
+    }
     if (key == "pyramid") {
       static constexpr Keys<2> keys = {"base", "height"};
       Obj p(x, keys, "an object {\"base\": b, \"height\": h}");

@@ -148,12 +148,15 @@ struct PyramidShape { double base = 1; double height = 1; };  // square base, ap
 struct OctahedronShape { double radius = 1; };             // centre to vertex
 struct IcosahedronShape { double radius = 1; };            // centre to vertex
 struct SphereShape { double radius = 1; };                 // a round shape (core/mesh.hpp, make_sphere)
+// A round shape: the points within `radius` of the segment of `length` along
+// the body's z axis, centred on its position (core/mesh.hpp, make_capsule).
+struct CapsuleShape { double radius = 1; double length = 1; };
 // Hulls and OBJ meshes are built once, by the loader (which checks them and
 // names the JSON path of a bad one); mesh_for() hands out that mesh.
 struct HullShape { std::vector<Vec3> points; std::shared_ptr<const Mesh> mesh = nullptr; };
 struct MeshShape { std::filesystem::path file; std::shared_ptr<const Mesh> mesh = nullptr; };  // resolved against the scene file's folder
 using Shape = std::variant<BoxShape, TetrahedronShape, PyramidShape, OctahedronShape,
-                           IcosahedronShape, HullShape, MeshShape, SphereShape>;
+                           IcosahedronShape, HullShape, MeshShape, SphereShape, CapsuleShape>;
 
 struct Body {
   std::string name;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -83,6 +84,134 @@ LVec nearest_on_triangle(const LVec& p, const LVec& a, const LVec& b, const LVec
   return a + ab * (vb * den) + ac * (vc * den);
 }
 
+// The minimum of a convex function on [0, 1] by golden-section search, to
+// long double's resolution of the argument: f's value at the minimum is what
+// the references read, exact to rounding even where f is flat (a segment
+// parallel to a face) or has a kink there (crossing segments). Returns the argument.
+template <class F>
+long double golden_minimum(const F& f) {
+  const long double g = (std::sqrt(5.0L) - 1) / 2;
+  long double lo = 0, hi = 1, x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+  long double f1 = f(x1), f2 = f(x2);
+  for (int i = 0; i < 120; ++i) {
+    if (f1 <= f2) hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = f(x1);
+    else lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = f(x2);
+  }
+  // The ends too: a monotone f has its minimum there, which the bracket only approaches.
+  long double best = f1 <= f2 ? x1 : x2;
+  for (const long double e : {0.0L, 1.0L})
+    if (f(e) < f(best)) best = e;
+  return best;
+}
+
+LVec nearest_on_segment(const LVec& x, const LVec& p0, const LVec& d) {
+  const long double dd = d.squaredNorm();
+  return dd > 0 ? LVec(p0 + std::clamp((x - p0).dot(d) / dd, 0.0L, 1.0L) * d) : p0;
+}
+
+// A capsule pair (core/capsule.hpp; a sphere is the capsule with a zero
+// segment) in long double, by methods that share nothing with the
+// narrowphase: a segment's distance to the other body is the minimum over
+// its points, a convex function of the parameter, found by golden-section
+// search (of the clamped point–segment distance, or of the nearest point of
+// every triangle); a segment through the polyhedron by the separating axes
+// of their Minkowski difference (every face normal, every edge × the
+// segment, both ways), plus the radius.
+PairContact capsule_reference(const Placed& a, const Placed& b, const Vec3& origin) {
+  struct Round {
+    LVec p0, d;
+    long double r;
+  };
+  const auto round = [&](const Placed& s) {
+    const Eigen::Matrix<long double, 3, 3> rot = s.pose.rotation.cast<long double>();
+    const LVec c = rot * s.mesh->sphere_centre().cast<long double>() + s.pose.position.cast<long double>() -
+                   origin.cast<long double>();
+    const LVec h = rot * s.mesh->capsule_half_axis().cast<long double>();
+    return Round{c - h, 2 * h, s.mesh->sphere_radius()};
+  };
+  LVec normal = LVec::Zero(), on_a = LVec::Zero();  // a → b; a's surface point nearest b
+  long double gap = 0;
+  if (a.mesh->is_round() && b.mesh->is_round()) {
+    const Round A = round(a), B = round(b);
+    const auto dist = [&](long double s) {
+      const LVec p = A.p0 + s * A.d;
+      return (nearest_on_segment(p, B.p0, B.d) - p).norm();
+    };
+    const LVec p = A.p0 + golden_minimum(dist) * A.d, q = nearest_on_segment(p, B.p0, B.d);
+    const long double d = (q - p).norm();
+    if (d > 0) {
+      normal = (q - p) / d;
+    } else {  // the segments meet: across both (or across a's, parallel), towards b
+      normal = A.d.cross(B.d);
+      if (normal.norm() <= 1e-14L * A.d.norm() * B.d.norm()) {
+        const LVec m = A.d.cwiseAbs();
+        normal = A.d.cross(m.x() <= m.y() && m.x() <= m.z() ? LVec(1, 0, 0) : m.y() <= m.z() ? LVec(0, 1, 0) : LVec(0, 0, 1));
+      }
+      normal.normalize();
+      if (normal.dot((B.p0 + 0.5L * B.d) - (A.p0 + 0.5L * A.d)) < 0) normal = -normal;
+    }
+    gap = d - A.r - B.r;
+    on_a = p + A.r * normal;
+  } else {
+    const bool poly_a = !a.mesh->is_round();
+    const Round S = round(poly_a ? b : a);
+    const Placed& pp = poly_a ? a : b;
+    const Projected P = project(pp, origin);
+    const auto& planes = pp.mesh->planes();
+    const LVec t = pp.pose.position.cast<long double>() - origin.cast<long double>();
+    const auto height = [&](const LVec& x) {  // the largest face-plane distance: ≤ 0 inside
+      long double most = -std::numeric_limits<long double>::infinity();
+      for (std::size_t k = 0; k < planes.size(); ++k)
+        most = std::max(most, P.normals[k].dot(x - t) - static_cast<long double>(planes[k].offset));
+      return most;
+    };
+    const auto nearest = [&](const LVec& x) {
+      LVec best_q = x;
+      long double best = std::numeric_limits<long double>::infinity();
+      for (const auto& tri : pp.mesh->triangles()) {
+        const LVec q = nearest_on_triangle(x, P.v[tri[0]], P.v[tri[1]], P.v[tri[2]]);
+        if ((x - q).squaredNorm() < best) best = (x - q).squaredNorm(), best_q = q;
+      }
+      return best_q;
+    };
+    LVec out_of_p = LVec::Zero(), c = LVec::Zero();
+    long double to_p = 0;
+    if (height(S.p0 + golden_minimum([&](long double s) { return height(S.p0 + s * S.d); }) * S.d) > 0) {
+      const long double s = golden_minimum([&](long double u) {
+        const LVec x = S.p0 + u * S.d;
+        return (x - nearest(x)).norm();
+      });
+      c = S.p0 + s * S.d;
+      const LVec q = nearest(c);
+      to_p = (c - q).norm();
+      out_of_p = (c - q) / to_p;
+    } else {
+      long double least = std::numeric_limits<long double>::infinity();
+      const auto consider = [&](const LVec& u) {
+        const Interval e = extent(P.v, u);
+        const long double s0 = u.dot(S.p0), s1 = u.dot(S.p0 + S.d);
+        if (e.hi - std::min(s0, s1) < least) least = e.hi - std::min(s0, s1), out_of_p = u, c = s0 <= s1 ? S.p0 : LVec(S.p0 + S.d);
+      };
+      for (const auto& n : P.normals) consider(n);
+      for (const auto& e : pp.mesh->edges()) {
+        const LVec u = (P.v[e[1]] - P.v[e[0]]).cross(S.d);
+        if (u.norm() <= 1e-14L * (P.v[e[1]] - P.v[e[0]]).norm() * S.d.norm()) continue;
+        consider(u.normalized()), consider(-u.normalized());
+      }
+      to_p = -least;
+    }
+    gap = to_p - S.r;
+    normal = poly_a ? out_of_p : LVec(-out_of_p);
+    on_a = poly_a ? LVec(c - to_p * out_of_p) : LVec(c - S.r * out_of_p);
+  }
+  PairContact out;
+  out.depth = static_cast<double>(-gap);
+  out.intersect = gap < 0;
+  out.normal = normal.cast<double>();
+  out.contact = (on_a + 0.5L * gap * normal).cast<double>() + origin;
+  return out;
+}
+
 // A round pair (core/round.hpp) in long double: sphere–sphere by the centres'
 // distance; sphere–polyhedron by the nearest point of every triangle when the
 // centre is outside, by the nearest face plane when inside.
@@ -150,6 +279,7 @@ PairContact round_reference(const Placed& a, const Placed& b, const Vec3& origin
 // Round pairs have their own exact answer (round_reference above).
 PairContact sat_reference(const Placed& a, const Placed& b) {
   const Vec3 origin = local_origin(a, b);
+  if (a.mesh->is_capsule() || b.mesh->is_capsule()) return capsule_reference(a, b, origin);
   if (a.mesh->is_sphere() || b.mesh->is_sphere()) return round_reference(a, b, origin);
   const Projected A = project(a, origin), B = project(b, origin);
   PairContact best;

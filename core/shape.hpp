@@ -89,10 +89,12 @@ class Shape {
     unit_ = Algebra::unit(mesh_->size());
     const double per = 1 / unit_;  // a power of two (or 1): exact
     edges_ready_ = triangles_ready_ = false;
-    if (mesh_->is_sphere()) {
-      // A round shape (core/round.hpp) is its centre and radius: the proxy
-      // polyhedron (core/mesh.hpp) is never placed.
+    if (mesh_->is_round()) {
+      // A round shape (core/round.hpp, core/capsule.hpp) is its centre, radius
+      // and a capsule's half axis: the proxy polyhedron (core/mesh.hpp) is
+      // never placed.
       centre_ = r * mesh_->sphere_centre();
+      half_axis_ = r * mesh_->capsule_half_axis();
       points_.clear(), planes_.clear();
       climb_ = false;
       return;
@@ -133,6 +135,9 @@ class Shape {
   // centre is centre(), about the body's position in metres.
   bool is_sphere() const { return mesh_->is_sphere(); }
   double radius() const { return mesh_->sphere_radius(); }
+  // A capsule's segment is centre() ± half_axis() (in the world's orientation).
+  bool is_capsule() const { return mesh_->is_capsule(); }
+  const Vec3& half_axis() const { return half_axis_; }
 
   // The feature edges, built on first use after a place(): a pair decided by a
   // face never needs them.
@@ -202,6 +207,7 @@ class Shape {
   std::vector<Point> points_;
   std::vector<Plane> planes_;
   Vec3 centre_ = Vec3::Zero();
+  Vec3 half_axis_ = Vec3::Zero();
   double unit_ = 1;
   bool climb_ = false;
   mutable std::vector<ShapeEdge> edges_;
@@ -229,6 +235,8 @@ class BodyView {
   Vec3 normal(int k) const { return shape_->normal(k); }
   Vec3 centre() const { return shape_->centre() + offset_; }
   Vec3 sphere_centre() const { return centre(); }  // a round shape's centre (core/round.hpp)
+  // A capsule's segment ends (end 0: centre − half axis), in the pair's frame.
+  Vec3 capsule_end(int i) const { return centre() + (i == 0 ? -1.0 : 1.0) * shape_->half_axis(); }
   // A point of the pair's frame (metres) in this body's own frame and unit.
   Point local_point(const Vec3& x) const { return Algebra::lift(Vec3((x - offset_) / shape_->unit())); }
   // Face k of this body as a plane in `other`'s own frame and unit, and vertex

@@ -1,8 +1,8 @@
-// tests/round_cases.hpp through the cga backend.
+// tests/round_cases.hpp and tests/capsule_cases.hpp through the cga backend.
 #include "cga/backend.hpp"
 #include "cga/narrowphase.hpp"
 
-#include "../round_cases.hpp"
+#include "../capsule_cases.hpp"  // and ../round_cases.hpp
 
 namespace {
 struct Cga {
@@ -16,4 +16,5 @@ struct Cga {
 
 namespace gacompare::testing {
 INSTANTIATE_TYPED_TEST_SUITE_P(Cga, RoundCases, Cga);
+INSTANTIATE_TYPED_TEST_SUITE_P(Cga, CapsuleCases, Cga);
 }

@@ -35,7 +35,7 @@ TEST(DocsScenes, EveryExampleLoadsAndRunsInBothBackends) {
   std::stringstream text;
   text << in.rdbuf();
   const auto blocks = json_blocks(text.str());
-  ASSERT_EQ(blocks.size(), 6u);  // particles, constraints, rigid bodies, collisions, friction, round shapes
+  ASSERT_EQ(blocks.size(), 7u);  // particles, constraints, rigid bodies, collisions, friction, sphere, capsule
   for (const auto& block : blocks) {
     core::Scene scene;
     ASSERT_NO_THROW(scene = core::parse_scene(block, "docs/scenes.md")) << block;

@@ -1,8 +1,8 @@
-// tests/round_cases.hpp through the traditional backend.
+// tests/round_cases.hpp and tests/capsule_cases.hpp through the traditional backend.
 #include "traditional/backend.hpp"
 #include "traditional/narrowphase.hpp"
 
-#include "../round_cases.hpp"
+#include "../capsule_cases.hpp"  // and ../round_cases.hpp
 
 namespace {
 struct Traditional {
@@ -16,4 +16,5 @@ struct Traditional {
 
 namespace gacompare::testing {
 INSTANTIATE_TYPED_TEST_SUITE_P(Traditional, RoundCases, Traditional);
+INSTANTIATE_TYPED_TEST_SUITE_P(Traditional, CapsuleCases, Traditional);
 }
