@@ -400,15 +400,14 @@ int list_scenes(const fs::path& dir) {
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().extension() == ".json") files.push_back(e.path());
   std::sort(files.begin(), files.end());
-  // Listing runs nothing, so a scene over the run budgets (--max-samples,
-  // --max-steps, --max-memory) is listed: `run` and `compare` refuse it with
-  // its numbers. A scene that does not load is named on stderr with its
-  // reason and the others are still listed; then the exit code is 2.
-  const core::Limits unlimited{INFINITY, INFINITY, INFINITY};
+  // A scene that does not load — broken, or over the run budgets (so that
+  // `list` with the same --max-samples, --max-steps, --max-memory tells what
+  // `run` would accept) — is named on stderr with its reason and the others
+  // are still listed; then the exit code is 2.
   int broken = 0;
   for (const auto& f : files) {
     try {
-      const auto s = core::load_scene(f, unlimited);
+      const auto s = core::load_scene(f, limits);
       std::cout << f.string() << "\t" << s.name << "\t" << s.description << "\n";
     } catch (const gacompare::Error& e) {
       if (e.kind() != ErrorKind::input) throw;
