@@ -25,6 +25,7 @@
 #include <random>
 #include <string>
 #include <utility>
+#include <tuple>
 #include <vector>
 
 namespace {
@@ -328,16 +329,29 @@ void prepared_segments(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations());
 }
 
-// Round pairs (issue #17, core/round.hpp): the pairs of data/collision/round.json
-// with a sphere against a sphere (`spheres` true) or a polyhedron, each body's
-// shape placed once (as the simulation's cached shapes are), so an item is
-// the pair's mathematics alone: sat_then_manifold with its one contact.
+// Round pairs (issue #17, core/round.hpp, core/capsule.hpp): the pairs of a
+// round corpus (data/collision/round.json, capsule.json) of one kind, each
+// body's shape placed once (as the simulation's cached shapes are), so an
+// item is the pair's mathematics alone: sat_then_manifold with its contacts.
+enum class RoundPair { sphere_sphere, sphere_polyhedron, capsule_sphere, capsule_capsule, capsule_polyhedron };
+
+RoundPair kind_of(const core::Mesh& a, const core::Mesh& b) {
+  const int capsules = a.is_capsule() + b.is_capsule(), spheres = a.is_sphere() + b.is_sphere();
+  if (capsules == 2) return RoundPair::capsule_capsule;
+  if (capsules == 1) return spheres == 1 ? RoundPair::capsule_sphere : RoundPair::capsule_polyhedron;
+  return spheres == 2 ? RoundPair::sphere_sphere : RoundPair::sphere_polyhedron;
+}
+
 template <class Body>
-void round_pairs(benchmark::State& st, bool spheres) {
-  static const auto cases = collision::load_cases(std::string(GACOMPARE_DATA_DIR) + "/collision/round.json");
+void round_pairs(benchmark::State& st, const std::string& corpus, RoundPair kind) {
+  const auto cases = collision::load_cases(std::string(GACOMPARE_DATA_DIR) + "/collision/" + corpus);
   std::vector<std::pair<typename Body::Shape, typename Body::Shape>> shapes;
   for (const auto& k : cases)
-    if ((k.mesh_a->is_sphere() && k.mesh_b->is_sphere()) == spheres) shapes.emplace_back(k.a(), k.b());
+    if (kind_of(*k.mesh_a, *k.mesh_b) == kind) shapes.emplace_back(k.a(), k.b());
+  if (shapes.empty()) {
+    st.SkipWithError("no pairs of this kind in the corpus");
+    return;
+  }
   std::vector<collision::FeatureContact> contacts;
   std::size_t i = 0;
   for (auto _ : st) {
@@ -352,13 +366,20 @@ void round_pairs(benchmark::State& st, bool spheres) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::RegisterBenchmark("BM_round_sphere_sphere/traditional",
-                               [](benchmark::State& st) { round_pairs<traditional::Body>(st, true); });
-  benchmark::RegisterBenchmark("BM_round_sphere_sphere/cga", [](benchmark::State& st) { round_pairs<cga::Body>(st, true); });
-  benchmark::RegisterBenchmark("BM_round_sphere_polyhedron/traditional",
-                               [](benchmark::State& st) { round_pairs<traditional::Body>(st, false); });
-  benchmark::RegisterBenchmark("BM_round_sphere_polyhedron/cga",
-                               [](benchmark::State& st) { round_pairs<cga::Body>(st, false); });
+  const std::tuple<const char*, const char*, RoundPair> round_kinds[] = {
+      {"sphere_sphere", "round.json", RoundPair::sphere_sphere},
+      {"sphere_polyhedron", "round.json", RoundPair::sphere_polyhedron},
+      {"capsule_sphere", "capsule.json", RoundPair::capsule_sphere},
+      {"capsule_capsule", "capsule.json", RoundPair::capsule_capsule},
+      {"capsule_polyhedron", "capsule.json", RoundPair::capsule_polyhedron}};
+  for (const auto& round : round_kinds) {
+    const std::string name = std::get<0>(round), corpus = std::get<1>(round);
+    const RoundPair kind = std::get<2>(round);
+    benchmark::RegisterBenchmark(("BM_round_" + name + "/traditional").c_str(),
+                                 [corpus, kind](benchmark::State& st) { round_pairs<traditional::Body>(st, corpus, kind); });
+    benchmark::RegisterBenchmark(("BM_round_" + name + "/cga").c_str(),
+                                 [corpus, kind](benchmark::State& st) { round_pairs<cga::Body>(st, corpus, kind); });
+  }
   benchmark::RegisterBenchmark("BM_narrowphase_report/traditional", [](benchmark::State& st) { per_pair(st, report<Trad>); });
   benchmark::RegisterBenchmark("BM_narrowphase_report/cga", [](benchmark::State& st) { per_pair(st, report<Cga>); });
   benchmark::RegisterBenchmark("BM_narrowphase_sat/traditional", [](benchmark::State& st) {

@@ -392,6 +392,7 @@ Mesh make_capsule(double radius, double length) {
   m.name_ = name;
   m.sphere_radius_ = radius;
   m.capsule_half_axis_ = Vec3(0, 0, h);
+  m.capsule_ = true;
   return m;
 }
 

@@ -108,8 +108,10 @@ class Mesh {
   const Vec3& sphere_centre() const { return sphere_centre_; }  // moved with the vertices by transformed()
   const Vec3& capsule_half_axis() const { return capsule_half_axis_; }  // zero for a sphere
   bool is_round() const { return sphere_radius_ > 0; }
-  bool is_sphere() const { return is_round() && capsule_half_axis_ == Vec3::Zero(); }
-  bool is_capsule() const { return is_round() && capsule_half_axis_ != Vec3::Zero(); }
+  // Flags, not a test of the half axis: the narrowphase asks for every pair,
+  // and comparing a vector there made sphere–sphere pairs take twice as long.
+  bool is_sphere() const { return is_round() && !capsule_; }
+  bool is_capsule() const { return capsule_; }
 
  private:
   Mesh() = default;  // only from_triangles makes one, so every Mesh is valid
@@ -129,12 +131,8 @@ class Mesh {
   double sphere_radius_ = 0;
   Vec3 sphere_centre_ = Vec3::Zero();
   Vec3 capsule_half_axis_ = Vec3::Zero();
+  bool capsule_ = false;  // a capsule of length > 0 (make_capsule)
   friend Mesh make_sphere(double radius);
-// A capsule of this radius about the segment of this length along z, centred
-// on the origin: length 0 is make_sphere(radius). Its proxy is the hull of
-// make_sphere's points with z ≥ 0 raised by ½ length and those with z ≤ 0
-// lowered by it (see Mesh::capsule_half_axis()).
-Mesh make_capsule(double radius, double length);
   friend Mesh make_capsule(double radius, double length);
 };
 
