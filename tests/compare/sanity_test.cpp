@@ -178,6 +178,23 @@ TEST(Sanity, ABodyUnderTheSlabFails) {
   EXPECT_NE(l.note.find("cube's centre of mass is inside slab at t = 0.6 s"), std::string::npos) << l.note;
 }
 
+// A round body is judged by its own surface, not by the polyhedron inscribed
+// in it (core/mesh.hpp: the proxy's 26 vertices lie on the sphere, so between
+// them the sphere reaches further, by up to r (1 − cos 27.3°) = 11 mm for
+// r = 0.1 m): a ball turned so that its body direction farthest from every
+// proxy vertex points down, 5 mm into the slab (50 tolerances, the proxy's
+// lowest vertex still 6 mm above the slab top), must fail.
+TEST(Sanity, ARoundBodyIsJudgedByItsOwnSurface) {
+  auto scene = slab_scene();
+  scene.bodies[1].shape = core::SphereShape{0.1};
+  const auto turn = Eigen::Quaterniond::FromTwoVectors(Vec3(0.35185, 0.88867, 0.29404), -Vec3::UnitZ());
+  scene.bodies[1].orientation = {turn.w(), turn.x(), turn.y(), turn.z()};
+  const auto run = make_run(scene, 0.1, [](std::size_t, double) { return State{{0, 0, 0.1 - 5e-3}, {0, 0, 0}}; });
+  const CheckLine l = compare::penetration_check(scene, run);
+  EXPECT_TRUE(fails(l)) << l.note;
+  EXPECT_NEAR(l.value, 5e-3, 1e-9) << l.note;
+}
+
 TEST(Sanity, AFixedStepBackendMayDipOneStepsTravel) {
   const auto scene = slab_scene();
   // 3 mm deep at 4 m/s: a 1 ms fixed step's travel (Bullet's), not a tunnel.
