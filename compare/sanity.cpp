@@ -85,7 +85,7 @@ std::vector<Posed> pose_all(const World& w, const core::Sample& s) {
     const auto& q = s.bodies[i].orientation;
     // Normalised: a sample may carry the run's rotation drift, which is
     // reported elsewhere; the geometry is judged on the rotation it stands for.
-    p.r = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+    p.r = core::rotation_matrix(q);
     p.c = s.bodies[i].position;
     for (const Vec3& x : w.meshes[i].vertices()) p.v.push_back(p.r * x + p.c);
     for (const auto& pl : w.meshes[i].planes()) {

@@ -252,9 +252,8 @@ class CollisionStep {
 
   // §2.5.1's search, on one island: a time t* in (t, tb) where the deepest
   // contact of the pairs of `d` deeper than tol at tb is in (0, tol]
-  // (core/time_of_impact.hpp). The
-  // trial poses come from re-integrating the pairs' bodies from (t, yb) for
-  // every trial time (impact_motion "integrate", §2.5.1), or from
+  // (core/time_of_impact.hpp). The trial poses come from re-integrating the
+  // pairs' bodies from (t, yb) for every trial time (impact_motion "integrate", §2.5.1), or from
   // interpolating them between yb and ys in the backend's algebra (§4.3.2's
   // "alternative to recalculating the entire system motion many times"); then
   // the island is integrated once, to the time found, and the search goes on
@@ -337,17 +336,15 @@ class CollisionStep {
           }, inner);
         };
         r = search_impact(how, interpolated, t, tb, g_lo, d.max_depth);
-        double lo = t, hi = tb, glo = g_lo, ghi = d.max_depth;
         if (r.found) {
           const double g = alone(r.t);  // the true motion there
           if (!(g > 0 && g <= how.tol)) {
             ++c_.counters.impact_interpolation_misses;
-            (g > how.tol ? hi : lo) = r.t;
-            (g > how.tol ? ghi : glo) = g;
-            r.found = false;
+            r = search_again(how, alone, t, tb, g_lo, d.max_depth, r.t, g);
           }
+        } else {
+          r = search_impact(how, alone, t, tb, g_lo, d.max_depth);
         }
-        if (!r.found) r = search_impact(how, alone, lo, hi, glo, ghi);
       }
       // The island once, to the time found; the search again over the
       // island's own motion if there the pairs are not in the band.
@@ -355,10 +352,7 @@ class CollisionStep {
         const double g = island(r.t);
         if (!(g > 0 && g <= how.tol)) {
           ++c_.counters.impact_island_misses;
-          double lo = t, hi = tb, glo = g_lo, ghi = d.max_depth;
-          (g > how.tol ? hi : lo) = r.t;
-          (g > how.tol ? ghi : glo) = g;
-          r = search_impact(how, island_trial, lo, hi, glo, ghi);
+          r = search_again(how, island_trial, t, tb, g_lo, d.max_depth, r.t, g);
         }
       }
     }
@@ -372,6 +366,17 @@ class CollisionStep {
     }
     ys.swap(ym);
     return r.t;
+  }
+
+  // A time tm found on one motion whose depth g on another is not in the band:
+  // the search over the other motion, from the bracket (lo, hi) that tm
+  // narrows (tm becomes hi if the pairs are too deep there, else lo).
+  template <class Depth>
+  static Searched search_again(const ImpactSearch& how, Depth&& depth, double lo, double hi, double g_lo, double g_hi,
+                               double tm, double g) {
+    (g > how.tol ? hi : lo) = tm;
+    (g > how.tol ? g_hi : g_lo) = g;
+    return search_impact(how, depth, lo, hi, g_lo, g_hi);
   }
 
   // Conservative advancement's bound of how fast the pairs' depth can grow:

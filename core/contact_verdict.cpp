@@ -100,13 +100,10 @@ Vec3 half_sides(const Body& b) {
   if (!box) throw std::invalid_argument(cat("body '", b.name, "' is not a box"));
   return box->size / 2;
 }
-Eigen::Matrix3d rotation(const Eigen::Vector4d& q) {
-  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
-}
-double half_height(const Body& b, const Eigen::Vector4d& q) { return rotation(q).row(2).cwiseAbs().dot(half_sides(b)); }
+double half_height(const Body& b, const Eigen::Vector4d& q) { return rotation_matrix(q).row(2).cwiseAbs().dot(half_sides(b)); }
 // The speed that spin gives the body's farthest vertex.
 double rim_speed(const Body& b, const BodySample& s) { return s.angular_velocity.norm() * half_sides(b).norm(); }
-double tilt(const BodySample& s) { return std::acos(std::min(1.0, rotation(s.orientation).row(2).cwiseAbs().maxCoeff())); }
+double tilt(const BodySample& s) { return std::acos(std::min(1.0, rotation_matrix(s.orientation).row(2).cwiseAbs().maxCoeff())); }
 
 const Collisions& collisions(const Scene& s) {
   const auto* c = s.find_effect<Collisions>();

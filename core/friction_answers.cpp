@@ -20,10 +20,6 @@ double FrictionFigure::error() const {
 
 namespace {
 
-Eigen::Matrix3d rotation(const Eigen::Vector4d& q) {
-  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
-}
-
 const Gravity& gravity_of(const Scene& scene, const Run& run, const std::string& kind) {
   const Gravity* gravity = scene.find_effect<Gravity>();
   if (!gravity || gravity->g.norm() == 0 || run.samples.empty())
@@ -52,7 +48,7 @@ std::vector<FrictionFigure> friction_figures(const Scene& scene, const Run& run)
   const Vec3 g = gravity_of(scene, run, "friction").g;
   const Body& base = scene.bodies[s];
   const Body& body = scene.bodies[b];
-  const Vec3 n = rotation(base.orientation) * Vec3::UnitZ();  // the static body's top face
+  const Vec3 n = rotation_matrix(base.orientation) * Vec3::UnitZ();  // the static body's top face
   const double cos_t = -g.dot(n) / g.norm(), sin_t = (g - g.dot(n) * n).norm() / g.norm();
   const double mu = std::sqrt(base.friction * body.friction);
   const double v0 = body.velocity.norm();
@@ -124,7 +120,7 @@ std::vector<FrictionFigure> top_figures(const Scene& scene, const Run& run) {
   const double m = body.mass ? *body.mass : *body.density * props.volume;
   const Eigen::Matrix3d inertia = props.inertia * (m / props.mass);
   const Vec3 up = -g.normalized();
-  const Eigen::Matrix3d r0 = rotation(body.orientation);
+  const Eigen::Matrix3d r0 = rotation_matrix(body.orientation);
   // The apex: the vertex lowest at the start; the axis runs from it to the centre of mass.
   Vec3 apex = mesh.vertices().front() - props.centre_of_mass;
   for (const Vec3& v : mesh.vertices())
@@ -151,7 +147,7 @@ std::vector<FrictionFigure> top_figures(const Scene& scene, const Run& run) {
   double azimuth = 0, previous = 0, tilt_far = theta_0, drift = 0;
   for (std::size_t k = 0; k < run.samples.size(); ++k) {
     const auto& x = run.samples[k].bodies[b];
-    const Eigen::Matrix3d r = rotation(x.orientation);
+    const Eigen::Matrix3d r = rotation_matrix(x.orientation);
     const Vec3 axis = r * e3;
     const double phi = std::atan2(axis.dot(h2), axis.dot(h1));
     if (k > 0) azimuth += std::remainder(phi - previous, 2 * std::numbers::pi);
@@ -211,7 +207,7 @@ std::vector<FrictionFigure> pile_figures(const Scene& scene, const Run& run) {
     blocks[i].centre = body.position;
     if ((blocks[i].radius = sphere_radius(body)) > 0) continue;
     const auto* box = std::get_if<BoxShape>(&body.shape);
-    if (!box || !rotation(body.orientation).isIdentity(1e-12))
+    if (!box || !rotation_matrix(body.orientation).isIdentity(1e-12))
       throw fail("body '" + body.name + "' is neither an axis-aligned box nor a sphere");
     blocks[i].half = box->size / 2;
   }

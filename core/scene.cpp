@@ -25,6 +25,10 @@
 
 namespace gacompare::core {
 
+Eigen::Matrix3d rotation_matrix(const Eigen::Vector4d& q) {
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+}
+
 std::string_view to_string(SolverMethod m) {
   switch (m) {
     case SolverMethod::euler:

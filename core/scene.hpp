@@ -176,6 +176,10 @@ struct Body {
   double friction = 0;
 };
 
+// The rotation matrix of a stored orientation [w, x, y, z], normalised first (a
+// sample may carry the run's rotation drift; what it stands for is a rotation).
+Eigen::Matrix3d rotation_matrix(const Eigen::Vector4d& q);
+
 // --- generators: expanded into particles and constraints by the dynamics issue --------
 struct ParticleNet {          // the hanging net of fig. 4
   std::string name;           // particles are named name[r][c]
