@@ -34,6 +34,9 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["islands_stepped_alone"] = local_islands;
   out["island_bodies_stepped_alone"] = local_island_bodies;
   out["island_steps"] = local_steps;
+  out["island_narrowphase_pairs"] = island_narrowphase_pairs;
+  out["links_apart"] = links_apart;
+  out["links_face_tested"] = links_face_tested;
   out["largest_island"] = largest_island;
   out["narrowphase_shapes"] = narrowphase_shapes;
   out["narrowphase_axes_kept"] = narrowphase_axes_kept;

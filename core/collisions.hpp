@@ -111,6 +111,9 @@ struct CollisionCounters {
   // too long for them), the bodies those held (each re-integrated from the
   // step's start) and the largest island seen.
   std::uint64_t islands = 0, local_islands = 0, local_island_bodies = 0, largest_island = 0, local_steps = 0;
+  std::uint64_t island_narrowphase_pairs = 0;  // of narrowphase_pairs, those tested in islands' sub-steps
+  std::uint64_t links_apart = 0;  // candidate pairs unlinked: apart by more than their reach (collision_step.hpp)
+  std::uint64_t links_face_tested = 0;  // of the pairs apart, those whose link every face normal decided
   std::uint64_t narrowphase_shapes = 0, narrowphase_axes_kept = 0;  // bodies' geometry built; pairs their last axis decided
   // Friction (issue #17): the contacts given friction rows, those whose
   // friction ended on the cone (sliding) and the friction rows warm started.
@@ -157,6 +160,9 @@ struct Detection {
   // With margins: the pairs whose grown spheres overlap (i < j, sorted), a
   // superset of the pairs the narrowphase tested; the islands' links.
   std::vector<std::pair<int, int>> candidates;
+  // With margins: the pairs found farther apart than both bodies can move in
+  // the step (Collider::note_apart), in the order tested; they link nothing.
+  std::vector<std::pair<int, int>> apart;
 };
 
 // The collider works on a group of bodies: the whole world (the world's model
@@ -249,7 +255,7 @@ struct Collider {
       counters.broadphase_tree_updates += static_cast<std::uint64_t>(found.counters.tree_updates);
       counters.broadphase_pairs_kept += static_cast<std::uint64_t>(found.counters.pairs_kept);
     }
-    narrow(world, pose, pairs, d, profile);
+    narrow(world, pose, pairs, d, profile, margin);
     return d;
   }
 
@@ -308,7 +314,7 @@ struct Collider {
 
   // The narrowphase of a group's pairs into d (hits and their deepest depth).
   void narrow(World world, const std::vector<collision::Pose>& pose, const std::vector<std::pair<int, int>>& pairs,
-              Detection& d, Profile& profile) const {
+              Detection& d, Profile& profile, std::span<const double> margin = {}) const {
     ScopedStage timed(profile, Stage::narrowphase);
     const auto method = setup.settings.method == ContactMethod::report ? collision::Method::sat_then_report
                                                                        : collision::Method::sat_then_manifold;
@@ -319,6 +325,7 @@ struct Collider {
       if (setup.is_static[world[i]] && setup.is_static[world[j]]) continue;
       if (world[i] > world[j]) std::swap(i, j);  // a < b in the world: every group sees a pair the same way
       ++counters.narrowphase_pairs;
+      if (world.data() != setup.everyone.data()) ++counters.island_narrowphase_pairs;
       PairHit h{i, j, {}, {}};
       if (setup.settings.reuse) {
         const int a = world[i], b = world[j];
@@ -334,10 +341,53 @@ struct Collider {
       // A pair within the touching band is in contact too (it has contacts):
       // its yes/no is rounding's (core/collision.hpp), and a box resting
       // exactly on another fell for a step whenever it rounded to apart.
-      if (!h.sat.intersect && h.features.empty()) continue;
+      if (!h.sat.intersect && h.features.empty()) {
+        if (!margin.empty()) note_apart(world, pose, h, margin, d);
+        continue;
+      }
       d.max_depth = std::max(d.max_depth, h.sat.depth);
       d.hits.push_back(std::move(h));
     }
+  }
+
+  // A pair the world's detection found apart, kept in d.apart when it is
+  // farther apart than both bodies can move in the step (the islands' links
+  // leave it out: core/collision_step.hpp, unlink_far), by the largest gap
+  // along a face normal (collision::face_gap; a round pair's exact distance).
+  // Not simply by the gap the narrowphase stopped at: its first axis is the
+  // pair's remembered one when geometry is reused (setup.settings.reuse), and
+  // a link must not depend on that. A face axis's gap bounds the faces' best
+  // from below, so where it already exceeds the reaches it decides alone.
+  void note_apart(World world, const std::vector<collision::Pose>& pose, const PairHit& h,
+                  std::span<const double> margin, Detection& d) const {
+    const int wa = world[h.a], wb = world[h.b];
+    const double reach = margin[h.a] + margin[h.b] +
+                         collision::kTouchingBand * collision::pair_scale(*setup.meshes[wa], *setup.meshes[wb]);
+    double gap = -h.sat.depth;
+    const bool face = h.sat.feature == collision::Feature::face_a || h.sat.feature == collision::Feature::face_b;
+    if (!(face && gap > reach))
+      gap = on_pair(wa, wb, [&] { return pose[h.a]; }, [&] { return pose[h.b]; }, [&](const NarrowBody& va, const NarrowBody& vb) {
+        if (collision::round_pair(va, vb)) return gap;  // already exact
+        ++counters.links_face_tested;
+        return collision::face_gap(va, vb);
+      });
+    if (gap > reach) d.apart.emplace_back(h.a, h.b);
+  }
+
+  // f(va, vb) over world bodies wa and wb placed by pose_a() and pose_b(),
+  // in the pair's own frame: with reuse, the bodies' shapes of this
+  // detection; without, the pair's own, built here.
+  template <class PoseA, class PoseB, class F>
+  auto on_pair(int wa, int wb, PoseA&& pose_a, PoseB&& pose_b, F&& f) const {
+    Shape own_a, own_b;
+    if (!setup.settings.reuse) {
+      own_a.place({setup.meshes[wa].get(), pose_a()}), own_b.place({setup.meshes[wb].get(), pose_b()});
+      counters.narrowphase_shapes += 2;
+    }
+    const Shape& a = setup.settings.reuse ? shape(wa, pose_a) : own_a;
+    const Shape& b = setup.settings.reuse ? shape(wb, pose_b) : own_b;
+    const Vec3 o = collision::local_origin(a.position(), b.position());
+    return f(NarrowBody(a, a.position() - o), NarrowBody(b, b.position() - o));
   }
 
   // Whether a sphere (centre c, radius r, world) reaches static body s's box
@@ -366,23 +416,14 @@ struct Collider {
     ScopedStage timed(profile, Stage::narrowphase);
     double g = -INFINITY;
     ++detection_;
-    Shape own_a, own_b;  // without reuse: each pair's own
     for (const auto& pair : pairs) {  // few pairs, each body in one or two: their poses only
       const int i = pair.first, j = pair.second;
-      const bool reuse = setup.settings.reuse;
-      const int wa = world[i], wb = world[j];
-      if (!reuse) {
-        own_a.reset(), own_b.reset();
-        own_a.place({setup.meshes[wa].get(), pose_of(i)}), own_b.place({setup.meshes[wb].get(), pose_of(j)});
-      }
-      const Shape& a = reuse ? shape(wa, [&] { return pose_of(i); }) : own_a;
-      const Shape& b = reuse ? shape(wb, [&] { return pose_of(j); }) : own_b;
-      const Vec3 o = collision::local_origin(a.position(), b.position());
-      const NarrowBody va(a, a.position() - o), vb(b, b.position() - o);
-      g = std::max(g, (collision::round_pair(va, vb) ? collision::round_narrowphase(va, vb)
-                                                     : collision::separating_axis(va, vb))
-                          .depth);
-      counters.narrowphase_shapes += reuse ? 0 : 2;
+      g = std::max(g, on_pair(world[i], world[j], [&] { return pose_of(i); }, [&] { return pose_of(j); },
+                              [](const NarrowBody& va, const NarrowBody& vb) {
+                                return (collision::round_pair(va, vb) ? collision::round_narrowphase(va, vb)
+                                                                      : collision::separating_axis(va, vb))
+                                    .depth;
+                              }));
     }
     return g;
   }

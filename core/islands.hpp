@@ -10,8 +10,10 @@
 // within the step cannot exchange an impulse in it, so their motions are
 // independent and each group may be searched, shortened and solved alone. Two
 // bodies are linked when their bounding spheres, each grown by how far the body
-// can move in the step, overlap (the candidates of the broadphase); the islands
-// are the connected components of the moving bodies under those links. Static
+// can move in the step, overlap (the candidates of the broadphase), unless the
+// narrowphase found them farther apart than that (core/collision_step.hpp,
+// unlink_far); the islands are the connected components of the moving bodies
+// under those links. Static
 // bodies take part in every island that touches them but never link two
 // islands: an impulse on a static body moves nothing.
 //

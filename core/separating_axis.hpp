@@ -309,4 +309,25 @@ PairContact separating_axis(const Body& a, const Body& b, bool early_exit = fals
   return done();
 }
 
+// The largest gap along the two bodies' face normals: a lower bound of their
+// distance (≤ 0 when no face separates them) that no remembered axis changes,
+// for the islands' links (core/collisions.hpp, note_apart). Every face's
+// support query, none of the edge pairs' (a pair of the scale boxes: ~0.2 µs
+// against the whole test's ~2.6 µs); ≥ the gap along any one face axis.
+template <class Body>
+double face_gap(const Body& a, const Body& b) {
+  double gap = -std::numeric_limits<double>::infinity();
+  const auto faces = [&](const Body& f, const Body& o) {
+    int arg = 0;  // each face's support is near the last one's: the climb starts there
+    for (int k = 0; k < static_cast<int>(f.mesh().planes().size()); ++k) {
+      const auto [lowest, j] = o.shape().lowest(f.plane_toward(k, o), arg);
+      gap = std::max(gap, lowest * o.shape().unit());
+      arg = j;
+    }
+  };
+  faces(a, b);
+  faces(b, a);
+  return gap;
+}
+
 }  // namespace gacompare::collision

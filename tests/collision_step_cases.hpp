@@ -170,22 +170,28 @@ TYPED_TEST_P(CollisionStepCases, StaticBoxFilterKeepsEveryPairInContact) {
 }
 
 // A time-of-impact search's trials integrate the deep pair's bodies alone
-// (core/collision_step.hpp, impact): a cube dropped beside a row of three
-// resting cubes shares their island (the bounding spheres overlap, the boxes
-// are 5 cm apart), yet each trial integrates the falling cube and the slab
-// only, and the island is integrated once per search, to the time found
-// (fixed-step RK4: the pair's bodies move bit for bit as in the island, so
-// no time found misses the band there). And the falling cube moves bit for
-// bit as it does with no row beside it: the search times the pair that went
-// too deep, not the row's resting contacts (already in the band, they made a
-// search over every hit stop short of the impact: 21 searches instead of 15,
-// and the cube 2e-5 m off at its first bounce).
+// (core/collision_step.hpp, impact): a cube thrown down at 20 m/s onto a slab
+// shares its island with a row of three resting cubes that touch one another
+// (the row's first face 1 mm beyond the farthest the cube's corners can ever
+// reach sideways, half its body diagonal: without friction its impulses are
+// all vertical, so its centre stays on the z axis; within 1 ms of the impact
+// its reach of 2 cm spans the gap), yet each trial integrates the falling cube
+// and the slab only, and the island is integrated once per search, to the
+// time found (fixed-step RK4: the pair's bodies move bit for bit as in the
+// island, so no time found misses the band there). And the falling cube moves
+// bit for bit as it does with no row beside it: the search times the pair
+// that went too deep, not the row's resting contacts (already in the band,
+// they made a search over every hit stop short of the impact: 21 searches
+// instead of 15, and the cube 2e-5 m off at its first bounce).
 TYPED_TEST_P(CollisionStepCases, ImpactTrialsIntegrateOnlyTheDeepPairsBodies) {
-  core::Scene alone = this->drop(), beside = alone;
+  core::Scene alone = this->drop();
+  alone.bodies[1].velocity = {0, 0, -20};
+  alone.duration = 0.5;  // the first impact's searches (it bounces 5 m up: the next comes after 2 s)
+  core::Scene beside = alone;
   for (int k = 0; k < 3; ++k) {
     core::Body cube = alone.bodies[1];
     cube.name = "row" + std::to_string(k);
-    cube.position = {0.33 + 0.25 * k, 0, 0.1};
+    cube.position = {0.1 + std::sqrt(3.0) * 0.1 + 0.001 + 0.2 * k, 0, 0.1};
     cube.orientation = {1, 0, 0, 0};
     cube.velocity = cube.angular_velocity = core::Vec3::Zero();
     beside.bodies.push_back(cube);
@@ -207,8 +213,36 @@ TYPED_TEST_P(CollisionStepCases, ImpactTrialsIntegrateOnlyTheDeepPairsBodies) {
   }
 }
 
+// Links by distance (core/collision_step.hpp, unlink_far): two cubes resting
+// on a slab 1 cm apart, their bounding spheres (radius 0.173 m, centres 0.21 m
+// apart) overlapping, are never linked while at rest (each step their pair is
+// a candidate the narrowphase finds farther apart than either can move), so
+// each is its own island; the same pair with one cube sliding at the other
+// at 20 m/s (its reach 2 cm in a 1 ms step) is linked from the first step.
+TYPED_TEST_P(CollisionStepCases, PairsApartByMoreThanTheirReachDoNotLink) {
+  core::Scene s = this->drop();
+  s.duration = 0.05;
+  s.bodies[1].position = {0, 0, 0.1};
+  s.bodies[1].orientation = {1, 0, 0, 0};
+  core::Body other = s.bodies[1];
+  other.name = "other";
+  other.position.x() = 0.21;
+  s.bodies.push_back(other);
+  const core::Run rest = core::simulate<TypeParam>(s);
+  ASSERT_FALSE(rest.error);
+  EXPECT_EQ(rest.counters.at("largest_island"), 1u);
+  EXPECT_EQ(rest.counters.at("links_apart"), rest.counters.at("collision_steps"));
+  s.bodies[2].velocity = {-20, 0, 0};
+  s.duration = 0.0005;  // the first step: the cubes meet within the second
+  const core::Run sliding = core::simulate<TypeParam>(s);
+  ASSERT_FALSE(sliding.error);
+  EXPECT_EQ(sliding.counters.at("largest_island"), 2u);
+  EXPECT_EQ(sliding.counters.at("links_apart"), 0u);
+}
+
 REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, FarApartIslandsGiveWhatEachGivesAlone,
                             StepLimitOnlyWhereThereIsSomethingToHit, BodyTooFastForAnyStepStopsTheRunNamingIt,
-                            StaticBoxFilterKeepsEveryPairInContact, ImpactTrialsIntegrateOnlyTheDeepPairsBodies);
+                            StaticBoxFilterKeepsEveryPairInContact, ImpactTrialsIntegrateOnlyTheDeepPairsBodies,
+                            PairsApartByMoreThanTheirReachDoNotLink);
 
 }  // namespace gacompare::testing
