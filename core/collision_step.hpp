@@ -113,7 +113,7 @@ class CollisionStep {
         if (!hits[k].empty()) c_.respond(m_, y, setup.everyone, hits[k], h, profile);
         continue;
       }
-      step_alone(is, d.candidates, y, y0, t0, t1, profile);
+      step_alone(is, d.candidates, hits[k], y, y0, t0, t1, profile);
     }
   }
 
@@ -187,8 +187,8 @@ class CollisionStep {
   }
 
   // Step 4 above: the island from (t0, y0) to t1 in sub-steps of its own.
-  void step_alone(const Island& is, const std::vector<std::pair<int, int>>& candidates, std::span<double> y,
-                  std::span<const double> y0, double t0, double t1, Profile& profile) const {
+  void step_alone(const Island& is, const std::vector<std::pair<int, int>>& candidates, std::vector<PairHit>& at_t1,
+                  std::span<double> y, std::span<const double> y0, double t0, double t1, Profile& profile) const {
     const auto& setup = c_.setup;
     const std::size_t stride = Bodies::state_size(m_) / setup.everyone.size();
     Alone a(m_, is.bodies, stride, setup.solver);
@@ -225,11 +225,17 @@ class CollisionStep {
         fail_stalled(a, ys, t, "its step limit " + fmt(h) + " s is below " + fmt(kLeastSubStep) + " of the collision step");
       ++c_.counters.local_steps;
       yb = ys;
-      if (at_start && tb == t1) ys = a.gather(y);
-      else a.integrate(t, tb, ys, profile);
+      Detection d;
+      if (at_start && tb == t1) {
+        ys = a.gather(y);
+        fail_if_nonfinite(a, ys, "integrate", tb);
+        d = world_hits(at_t1, among, local);
+      } else {
+        a.integrate(t, tb, ys, profile);
+        fail_if_nonfinite(a, ys, "integrate", tb);
+        d = c_.detect_among(a.model, ys, a.world, among, profile);
+      }
       at_start = false;
-      fail_if_nonfinite(a, ys, "integrate", tb);
-      Detection d = c_.detect_among(a.model, ys, a.world, among, profile);
       double accepted = tb;
       if (d.max_depth > tol) {
         accepted = impact(a, d, t, yb, tb, ys, profile);
@@ -243,6 +249,32 @@ class CollisionStep {
       t = accepted;
     }
     a.scatter(ys, y);
+  }
+
+  // The island's hits at t1 from the world's detection, in its own numbering
+  // and in the order its own detection would give them (its pairs', sorted):
+  // the world's state at t1 is the island's first sub-step's when that ends
+  // at t1, so detecting again would find the same hits (a pair in contact
+  // gets its answer from scratch, whatever axis it remembers).
+  template <class Local>
+  static Detection world_hits(std::vector<PairHit>& hits, const std::vector<std::pair<int, int>>& among, Local&& local) {
+    const auto by_pair = [](const PairHit& x, const PairHit& y) { return std::pair(x.a, x.b) < std::pair(y.a, y.b); };
+    std::sort(hits.begin(), hits.end(), by_pair);  // world numbering, a < b
+    std::vector<std::pair<int, int>> order;  // (position in among, hit)
+    for (std::size_t k = 0; k < hits.size(); ++k) {
+      const int i = local(hits[k].a), j = local(hits[k].b);
+      const auto at = std::lower_bound(among.begin(), among.end(), std::pair(std::min(i, j), std::max(i, j)));
+      order.emplace_back(static_cast<int>(at - among.begin()), static_cast<int>(k));
+    }
+    std::sort(order.begin(), order.end());
+    Detection d;
+    for (const auto& [at, k] : order) {
+      PairHit h = std::move(hits[static_cast<std::size_t>(k)]);
+      h.a = local(h.a), h.b = local(h.b);  // world order kept: a's world index below b's, as the narrowphase puts it
+      d.max_depth = std::max(d.max_depth, h.sat.depth);
+      d.hits.push_back(std::move(h));
+    }
+    return d;
   }
 
   [[noreturn]] void fail_too_fast(std::size_t k, double reach, double t0, double h) const {

@@ -352,8 +352,9 @@ struct Collider {
 
   // A pair the world's detection found apart, kept in d.apart when it is
   // farther apart than both bodies can move in the step (the islands' links
-  // leave it out: core/collision_step.hpp, unlink_far), by the largest gap
-  // along a face normal (collision::face_gap; a round pair's exact distance).
+  // leave it out: core/collision_step.hpp, unlink_far): when some face
+  // normal separates it by more than that (collision::face_gap, which stops
+  // at the first that does; a round pair by its exact distance).
   // Not simply by the gap the narrowphase stopped at: its first axis is the
   // pair's remembered one when geometry is reused (setup.settings.reuse), and
   // a link must not depend on that. A face axis's gap bounds the faces' best
@@ -369,7 +370,7 @@ struct Collider {
       gap = on_pair(wa, wb, [&] { return pose[h.a]; }, [&] { return pose[h.b]; }, [&](const NarrowBody& va, const NarrowBody& vb) {
         if (collision::round_pair(va, vb)) return gap;  // already exact
         ++counters.links_face_tested;
-        return collision::face_gap(va, vb);
+        return collision::face_gap(va, vb, reach);
       });
     if (gap > reach) d.apart.emplace_back(h.a, h.b);
   }

@@ -350,7 +350,8 @@ TYPED_TEST_P(NarrowphaseCacheCases, TouchingPairsHaveTheirContacts) {
 // rounding), at least the gap of any face axis the early test stops at with
 // or without a remembered axis (so a face axis's gap above the reaches may
 // decide alone), and the same with whichever axis is remembered, since it
-// reads none. Aligned cubes apart by d give d.
+// reads none; stopped at the first gap above a threshold it says whether the
+// best is above it. Aligned cubes apart by d give d.
 TYPED_TEST_P(NarrowphaseCacheCases, FaceGapBoundsTheDistanceWhateverIsRemembered) {
   using Body = typename TypeParam::Body;
   using Shape = typename Body::Shape;
@@ -375,6 +376,9 @@ TYPED_TEST_P(NarrowphaseCacheCases, FaceGapBoundsTheDistanceWhateverIsRemembered
         EXPECT_GE(gap, -r.depth) << c.name;
       }
     EXPECT_EQ(collision::face_gap(va, vb), gap) << c.name;
+    // Stopping at the first gap above `enough` answers "above or not" alike.
+    for (const double enough : {0.5 * gap, gap - 1e-9 * scale, gap + 1e-9 * scale, -1.0})
+      EXPECT_EQ(collision::face_gap(va, vb, enough) > enough, gap > enough) << c.name << " enough " << enough;
   }
   EXPECT_GT(apart, 50);
   EXPECT_GT(faces, apart);
