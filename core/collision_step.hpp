@@ -128,11 +128,12 @@ class CollisionStep {
   // t1. When that is positive (beyond the touching band, within which a pair
   // counts as touching) the pair cannot touch in the step: it links nothing
   // and is not among its island's pairs (Collider::note_apart keeps those in
-  // Detection::apart, by the largest gap along a face normal: a bound that
-  // does not depend on which axis the pair remembers). Bounding spheres are loose (a tetrahedron fills 12 %
-  // of its sphere), and in the dense part of the 10,000-body box their grown
-  // overlaps, ~10 per body, chained islands of thousands of bodies whose
-  // every impact re-detected all their pairs: 93 % of all narrowphase pairs.
+  // Detection::apart, judged by the gaps along the face normals: a bound that
+  // does not depend on which axis the pair remembers). Bounding spheres are
+  // loose (a tetrahedron fills 12 % of its sphere), and in the dense part of
+  // the 10,000-body box their grown overlaps, ~10 per body, chained islands
+  // of thousands of bodies whose every impact re-detected all their pairs:
+  // 93 % of all narrowphase pairs.
   void unlink_far(Detection& d) const {
     if (d.apart.empty()) return;
     std::vector<std::pair<int, int>> far = std::move(d.apart);
@@ -258,9 +259,7 @@ class CollisionStep {
   // gets its answer from scratch, whatever axis it remembers).
   template <class Local>
   static Detection world_hits(std::vector<PairHit>& hits, const std::vector<std::pair<int, int>>& among, Local&& local) {
-    const auto by_pair = [](const PairHit& x, const PairHit& y) { return std::pair(x.a, x.b) < std::pair(y.a, y.b); };
-    std::sort(hits.begin(), hits.end(), by_pair);  // world numbering, a < b
-    std::vector<std::pair<int, int>> order;  // (position in among, hit)
+    std::vector<std::pair<int, int>> order;  // (position in among, hit): every hit is one of the island's pairs
     for (std::size_t k = 0; k < hits.size(); ++k) {
       const int i = local(hits[k].a), j = local(hits[k].b);
       const auto at = std::lower_bound(among.begin(), among.end(), std::pair(std::min(i, j), std::max(i, j)));
