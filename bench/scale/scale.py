@@ -63,7 +63,8 @@ def run_size(args, n):
             "error": run.get("error"),
             "counters": {k: run["counters"][k] for k in ("largest_island", "islands_stepped_alone",
                                                           "island_bodies_stepped_alone", "impact_searches",
-                                                          "narrowphase_pairs", "broadphase_candidates")
+                                                          "narrowphase_pairs", "island_narrowphase_pairs",
+                                                          "links_apart", "broadphase_candidates")
                          if k in run.get("counters", {})},
         }
     if done.returncode != 0:
