@@ -307,13 +307,13 @@ class CollisionStep {
   // §2.5.1's search, on one island: a time t* in (t, tb) where the deepest
   // contact of the pairs of `d` deeper than tol at tb is in (0, tol]
   // (core/time_of_impact.hpp). The trial poses come from re-integrating the
-  // pairs' bodies from (t, yb) for every trial time (impact_motion "integrate", §2.5.1), or from
-  // interpolating them between yb and ys in the backend's algebra (§4.3.2's
-  // "alternative to recalculating the entire system motion many times"); then
-  // the island is integrated once, to the time found, and the search goes on
-  // over the island's own motion from the bracket found if that time is not
-  // in the band. ys holds the state at tb and, on return, the state at the
-  // accepted time, which it returns.
+  // pairs' bodies from (t, yb) for every trial time (impact_motion
+  // "integrate", §2.5.1), or from interpolating them between yb and ys in the
+  // backend's algebra (§4.3.2's "alternative to recalculating the entire
+  // system motion many times"); then the island is integrated once, to the
+  // time found, and the search goes on over the island's own motion from the
+  // bracket found if that time is not in the band. ys holds the state at tb
+  // and, on return, the state at the accepted time, which it returns.
   //
   // Only the pairs' bodies for the trials (issue #14; the report re-integrates
   // the whole system, and so did this search over its island): within a

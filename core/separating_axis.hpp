@@ -155,6 +155,19 @@ struct SatHint {
   bool kept = false;  // written: the answer is the remembered axis's (it still separates)
 };
 
+// The face of f most turned towards o's centre (−1 if none compares): the
+// first axis tried for a pair with no remembered one, as it separates most
+// pairs that are apart (separating_axis, face_gap).
+template <class Body>
+int facing(const Body& f, const Body& o) {
+  const Vec3 towards = o.centre() - f.centre();
+  int k = -1;
+  double most = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < static_cast<int>(f.mesh().planes().size()); ++i)
+    if (const double c = f.normal(i).dot(towards); c > most) most = c, k = i;
+  return k;
+}
+
 // The fast path over two bodies of a pair (core/shape.hpp's BodyView over a
 // backend's algebra: traditional/narrowphase.hpp, cga/narrowphase.hpp).
 //
@@ -252,12 +265,8 @@ PairContact separating_axis(const Body& a, const Body& b, bool early_exit = fals
   // pairs, bench BM_pair_apart_cached).
   const bool remembered = hint && hint->feature != Feature::none;
   SatHint first = remembered ? *hint : SatHint{};
-  if (early_exit && !remembered) {
-    const Vec3 towards = b.centre() - a.centre();
-    double most = -std::numeric_limits<double>::infinity();
-    for (int k = 0; k < static_cast<int>(a.mesh().planes().size()); ++k)
-      if (const double c = a.normal(k).dot(towards); c > most) most = c, first = {Feature::face_a, k, 0};
-  }
+  if (early_exit && !remembered)
+    if (const int k = facing(a, b); k >= 0) first = {Feature::face_a, k, 0};
   if (early_exit && first.feature != Feature::none) {
     const SatHint h = first;
     const int pa = static_cast<int>(a.mesh().planes().size()), pb = static_cast<int>(b.mesh().planes().size());
@@ -326,17 +335,9 @@ double face_gap(const Body& a, const Body& b, double enough = std::numeric_limit
     arg = j;  // the next face's support is near this one's: the climb starts there
     return gap > enough;
   };
-  const auto turned = [](const Body& f, const Body& o) {
-    const Vec3 towards = o.centre() - f.centre();
-    int k = 0;
-    double most = -std::numeric_limits<double>::infinity();
-    for (int i = 0; i < static_cast<int>(f.mesh().planes().size()); ++i)
-      if (const double c = f.normal(i).dot(towards); c > most) most = c, k = i;
-    return k;
-  };
-  const int ka = turned(a, b), kb = turned(b, a);
+  const int ka = facing(a, b), kb = facing(b, a);
   int arg_a = 0, arg_b = 0;  // supports of b under a's faces, of a under b's
-  if (face(a, b, ka, arg_b) || face(b, a, kb, arg_a)) return gap;
+  if ((ka >= 0 && face(a, b, ka, arg_b)) || (kb >= 0 && face(b, a, kb, arg_a))) return gap;
   for (int k = 0; k < static_cast<int>(a.mesh().planes().size()); ++k)
     if (k != ka && face(a, b, k, arg_b)) return gap;
   for (int k = 0; k < static_cast<int>(b.mesh().planes().size()); ++k)
