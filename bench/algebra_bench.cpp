@@ -1,10 +1,10 @@
-// The algebra's cost against hand-written traditional code (issue #2): the same
+// The algebra's cost against hand-written traditional code: the same
 // operation on the same 256 seeded random inputs through
 //   sparse  the compile-time sparse multivectors (cga/algebra/multivector.hpp)
 //   dense   the 2003-style run-time multivector, all 2^n components (dense.hpp)
 //   eigen   what a traditional programmer writes with Eigen
 // Names are BM_<operation>/<implementation>; scripts/bench-ratios.py turns a run
-// into the README's ratio table. Every loop writes its results to an array that
+// into a ratio table (docs/results/algebra.md). Every loop writes its results to an array that
 // is kept alive, so nothing is optimised away.
 #include "cga/algebra/cl41.hpp"
 #include "cga/algebra/dense.hpp"

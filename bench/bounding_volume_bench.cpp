@@ -1,4 +1,4 @@
-// Bounding volumes and broadphase (issue #6, §2.4.1), conformal vs traditional:
+// Bounding volumes and broadphase (§2.4.1), conformal vs traditional:
 //   exhaustive_sphere_<hull>  the report's exhaustive search (hulls of ≤ 16 vertices)
 //   welzl_sphere_<hull>       Welzl's algorithm with move-to-front (one generator
 //       for the run: each call shuffles anew, so its work is an average)
@@ -16,16 +16,16 @@
 //   broadphase_100, broadphase_1000   sort and sweep over sparse random scenes
 //       (centres in a box of side 6·n^(1/3), radii 0.2–1.2), spheres pre-built;
 //       cga_meet: the conformal policy with the report's overlap_by_meet
-// The same search code (core/bounding_volume.hpp, core/broadphase.hpp) runs on
+// The same search code (core/collision/bounding_volume.hpp, core/collision/broadphase.hpp) runs on
 // both policies, so a ratio is the algebra's. Counters report the work per call
 // (spheres built, containment tests; candidates and pairs).
 //
 // Names: BM_<operation>/cga and BM_<operation>/traditional, as geometry_bench:
 //   scripts/bench-ratios.py build/release/bench/bounding_volume_bench --reference traditional
 #include "cga/bounding_volume.hpp"
-#include "core/bounding_volume.hpp"
-#include "core/broadphase.hpp"
-#include "core/mesh.hpp"
+#include "core/collision/bounding_volume.hpp"
+#include "core/collision/broadphase.hpp"
+#include "core/model/mesh.hpp"
 #include "traditional/bounding_volume.hpp"
 
 #include <benchmark/benchmark.h>

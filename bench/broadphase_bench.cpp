@@ -1,4 +1,4 @@
-// The collision pipeline's broadphase (issue #14 item 2, core/broadphase.hpp):
+// The collision pipeline's broadphase (core/collision/broadphase.hpp):
 // sort and sweep, the AABB tree and the sphere tree, traditional and cga, per
 // detection, on N = 100, 1,000 and 10,000 bodies in a box at constant density
 // (that of bodies_in_box: 27 bodies in 1.2³ m³, 15.6 per m³), with the box's
@@ -25,7 +25,7 @@
 // Names BM_<scene>/<backend>_<method>:
 //   python3 scripts/bench-ratios.py build/release/bench/broadphase_bench --reference traditional_sweep
 #include "cga/bounding_volume.hpp"
-#include "core/broadphase.hpp"
+#include "core/collision/broadphase.hpp"
 #include "traditional/bounding_volume.hpp"
 
 #include <benchmark/benchmark.h>

@@ -1,5 +1,5 @@
-// The degenerate-case table of issue #12 (README "Contacts"): every case of the
-// contact family (core/contact_family.hpp) through traditional, cga and Bullet,
+// The degenerate-case table (docs/results/contacts.md): every case of the
+// contact family (answers/contact_family.hpp) through traditional, cga and Bullet,
 // each judged against its analytic outcome. A cell is "pass" or "FAIL" with the
 // worst error (the check that came closest to, or went furthest past, its
 // tolerance); the reasons for the failures follow the table. Markdown on stdout,
@@ -14,9 +14,9 @@
 // contacts (the collisions effect's "method"; Bullet has its own).
 #include "cga/backend.hpp"
 #include "compare/bullet_world.hpp"
-#include "core/contact_family.hpp"
+#include "answers/contact_family.hpp"
 #include "core/error.hpp"
-#include "core/simulator.hpp"
+#include "core/dynamics/simulator.hpp"
 #include "traditional/backend.hpp"
 
 #include <cstdio>

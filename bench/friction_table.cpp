@@ -1,18 +1,18 @@
-// The friction table of issue #17 (README "Friction"): each friction scene
+// The friction table (docs/results/contacts.md): each friction scene
 // (data/scenes/friction_*.json) through traditional, cga and Bullet, each
-// figure against its analytic answer (core/friction_answers.hpp). A cell is the
+// figure against its analytic answer (answers/friction_answers.hpp). A cell is the
 // measured value and its error (relative, or absolute in the unit where the
 // answer is 0). Markdown on stdout.
 //
 //   build/release/bench/friction_table [scene.json ...]
 //
 // Without arguments: the three bundled friction scenes, the rolling spheres,
-// the top on the floor and the mixed pile (core/friction_answers.hpp).
+// the top on the floor and the mixed pile (answers/friction_answers.hpp).
 #include "cga/backend.hpp"
 #include "compare/bullet_world.hpp"
 #include "core/error.hpp"
-#include "core/friction_answers.hpp"
-#include "core/simulator.hpp"
+#include "answers/friction_answers.hpp"
+#include "core/dynamics/simulator.hpp"
 #include "traditional/backend.hpp"
 
 #include <cstdio>

@@ -1,4 +1,4 @@
-// Each geometric operation of issue 3, conformal vs traditional, on the same
+// Each geometric operation of Table 1 and §1.6–1.7, conformal vs traditional, on the same
 // pre-generated random cases (features of size ~1 near the origin, so both
 // backends take the same branches: a mix of circles and misses, pairs and
 // misses). Entities are built once, outside the timed loop, in each backend's

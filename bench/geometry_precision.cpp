@@ -1,4 +1,4 @@
-// Precision far from the origin (issue 3): the error of each geometric operation
+// Precision far from the origin: the error of each geometric operation
 // at distances D = 1, 1e2, 1e4, 1e6 from the origin, for the traditional twin,
 // the conformal backend, and the conformal backend in a local origin
 // (cga/geometry/local_origin.hpp). Prints a markdown table.

@@ -1,11 +1,11 @@
-// Hulls in bounded time (issue #16 item 4): Qhull on N points of a sphere, and
+// Hulls in bounded time: Qhull on N points of a sphere, and
 // on nearly flat point sets, and what a body built from them costs before the
 // first step (the loader's checks and mass properties, the bounding sphere).
 //   build/release/bench/hull_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-#include "core/bounding_volume.hpp"
-#include "core/mass_properties.hpp"
-#include "core/mesh.hpp"
-#include "core/scene.hpp"
+#include "core/collision/bounding_volume.hpp"
+#include "core/model/mesh.hpp"
+#include "core/model/model.hpp"
+#include "core/model/scene.hpp"
 #include "traditional/bounding_volume.hpp"
 
 #include <benchmark/benchmark.h>
@@ -57,8 +57,9 @@ void BM_HullOfFlatPoints(benchmark::State& state) {
 BENCHMARK(BM_HullOfFlatPoints)->Arg(9)->Arg(12)->Unit(benchmark::kMillisecond);
 
 // Everything a body of a hull costs before the first step: the loader (which
-// builds the hull, checks it and the budgets), its mass properties and its
-// bounding sphere (Welzl), as a collision scene needs them.
+// builds the hull), the compiled model (mass properties, centred mesh,
+// convexity) with the budgets it is checked against, and its bounding sphere
+// (Welzl), as a collision scene needs them.
 void BM_HullBodyReady(benchmark::State& state) {
   const auto p = sphere(static_cast<int>(state.range(0)));
   nlohmann::json points = nlohmann::json::array();
@@ -71,13 +72,11 @@ void BM_HullBodyReady(benchmark::State& state) {
         {{"name", "floor"}, {"shape", {{"box", {2, 2, 0.2}}}}, {"mass", 1}, {"position", {0, 0, -0.1}}, {"static", true}}}}};
   const std::string text = scene.dump();
   for (auto _ : state) {
-    const core::Scene s = core::parse_scene(text, "hull.json");
-    const core::Mesh mesh = core::mesh_for(s.bodies[0].shape);
-    const auto props = core::mass_properties(mesh, 1.0);
+    const core::Compiled c = core::parse_compiled(text, "hull.json");
+    const core::Mesh& mesh = *c.model->bodies[0].mesh;
     std::mt19937_64 rng(1);
     benchmark::DoNotOptimize(
         core::welzl_sphere<traditional::SphereOps>(std::span<const Vec3>(mesh.vertices()), rng));
-    benchmark::DoNotOptimize(props);
   }
 }
 BENCHMARK(BM_HullBodyReady)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);

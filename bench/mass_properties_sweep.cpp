@@ -1,4 +1,4 @@
-// What accuracy costs in time for mass properties (§2.3.3, issue #5): the
+// What accuracy costs in time for mass properties (§2.3.3): the
 // report's voxel method against the exact polyhedral integrals, per cell count
 // and cell test. Prints a markdown table; errors are relative to the exact values.
 //
@@ -7,8 +7,8 @@
 // Times are medians of repeats in one process (a plain program, not Google
 // Benchmark: one voxel run at 256³ cells takes seconds, and the table needs the
 // error next to the time).
-#include "core/mass_properties.hpp"
-#include "core/mesh.hpp"
+#include "core/model/mass_properties.hpp"
+#include "core/model/mesh.hpp"
 
 #include <Eigen/Geometry>
 

@@ -1,4 +1,4 @@
-// Narrowphase per pair and per stage (issue #6): the report's detector and the
+// Narrowphase per pair and per stage: the report's detector and the
 // separating-axis fast path in both backends, the exact reference, FCL and
 // Bullet, on the same pairs; and the per-feature stages (point in body,
 // segment–triangle). Benchmarks are named BM_<op>/<impl> for
@@ -11,9 +11,9 @@
 #include "cga/narrowphase.hpp"
 #include "cga/segment_triangle.hpp"
 #include "compare/referee.hpp"
-#include "core/collision_cases.hpp"
+#include "answers/collision_cases.hpp"
 #include "core/error.hpp"
-#include "core/separating_axis.hpp"
+#include "core/collision/separating_axis.hpp"
 #include "traditional/narrowphase.hpp"
 #include "traditional/segment_triangle.hpp"
 
@@ -70,7 +70,7 @@ void per_pair(benchmark::State& st, F&& f) {
   st.SetItemsProcessed(st.iterations());
 }
 
-// The contacts of a pair in contact (issue #12): fig. 7's detector against
+// The contacts of a pair in contact: fig. 7's detector against
 // the manifold, each with its separating-axis test, on the overlapping pairs
 // of the corpus; and the manifold on the degenerate box pairs the simulation
 // meets most (equal cubes face to face: aligned, 1e-9 rad and 45° about the
@@ -155,13 +155,12 @@ const Segments& segments() {
   return s;
 }
 
-// ---- issue #14: a pair as the simulation meets it (sat_then_manifold) ----
+// ---- a pair as the simulation meets it (sat_then_manifold) ----
 //
 // The corpus's pairs split into apart and overlapping (the reference's yes/no);
 // each item is one pair:
 //   pair_rebuilt: narrowphase on two Placed bodies, their geometry built for
-//     the pair alone (new storage each time: the cost before issue #14 had
-//     the pair's frame in it too);
+//     the pair alone (new storage each time);
 //   pair_placed: both Shapes placed afresh in storage kept between items, no
 //     axis remembered (a pair's first detection; `gacompare collide`'s
 //     *_manifold columns);
@@ -261,7 +260,7 @@ void register_pairs() {
   }
 }
 
-// Support points (core/shape.hpp): every face of one hull of n vertices
+// Support points (core/collision/shape.hpp): every face of one hull of n vertices
 // against another's vertices, by the scan and by hill climbing from the last
 // face's support, as the face query runs them; one item = one face. The hulls:
 // n random points on a sphere (every one a vertex), the second turned at random.
@@ -329,7 +328,7 @@ void prepared_segments(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations());
 }
 
-// Round pairs (issue #17, core/round.hpp, core/capsule.hpp): the pairs of a
+// Round pairs (core/collision/round.hpp, core/collision/capsule.hpp): the pairs of a
 // round corpus (data/collision/round.json, capsule.json) of one kind, each
 // body's shape placed once (as the simulation's cached shapes are), so an
 // item is the pair's mathematics alone: sat_then_manifold with its contacts.

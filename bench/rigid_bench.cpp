@@ -1,4 +1,4 @@
-// Rigid-body stages (issue #5), traditional matrix vs quaternion vs rotor:
+// Rigid-body stages, traditional matrix vs quaternion vs rotor:
 //   derivative  one body's dy/dt (ω from L, the rotation's rate, forces)
 //   step        one RK4 step of one body through the simulator's backend (four
 //               derivatives, each with its `forces` stage timer, and the update)
@@ -7,9 +7,9 @@
 //               matrix built once per body (the outermorphism, docs/architecture.md "Fair
 //               comparison")
 // Names BM_<stage>/<representation>; scripts/bench-ratios.py --reference matrix
-// prints the README's ratio table.
+// prints the ratio table of docs/results/rigid-bodies.md.
 #include "cga/backend.hpp"
-#include "core/ode.hpp"
+#include "core/dynamics/ode.hpp"
 #include "traditional/backend.hpp"
 
 #include <benchmark/benchmark.h>
@@ -34,7 +34,7 @@ core::Scene body_scene(const char* rotation) {
 template <class Bodies>
 void derivative(benchmark::State& state, const char* rotation) {
   const auto scene = body_scene(rotation);
-  const auto model = Bodies::build(scene, core::body_properties(scene));
+  const auto model = Bodies::build(scene, core::compile(scene));
   std::vector<double> y(Bodies::state_size(model)), dy(y.size());
   Bodies::initial_state(model, y);
   for (auto _ : state) {

@@ -1,4 +1,4 @@
-// Hard cases stay numerically stable (issue #5): a fast off-axis spin (|ω| = 36
+// Hard cases stay numerically stable: a fast off-axis spin (|ω| = 36
 // rad/s, a 0.1 × 0.4 × 0.9 box) through every rotation representation × solver ×
 // renormalisation policy, and what each keeps: the drift of the stored rotation
 // from a rotation (‖RᵀR − I‖, |q q* − 1|, |R R̃ − 1|), the relative change of the
@@ -7,7 +7,7 @@
 //   rigid_stability [--steps N]     (default 100000 fixed steps of 1e-3 s; the
 //                                    adaptive solvers run the same duration)
 #include "cga/backend.hpp"
-#include "core/simulator.hpp"
+#include "core/dynamics/simulator.hpp"
 #include "traditional/backend.hpp"
 
 #include <chrono>

@@ -1,4 +1,4 @@
-// What the time of impact costs (issues #7 and #14), two tables, markdown on
+// What the time of impact costs, two tables, markdown on
 // stdout:
 //
 //   time_of_impact_sweep [repeats=3] [scene names...]
@@ -6,7 +6,7 @@
 //     Illinois: what a tighter penetration tolerance costs;
 //   time_of_impact_sweep --methods [repeats=3] [scene names...]
 //     each scene at its own tolerance through the four searches of
-//     core/time_of_impact.hpp (bisection, Illinois, golden section,
+//     core/collision/time_of_impact.hpp (bisection, Illinois, golden section,
 //     conservative advancement) with both motions (the island re-integrated
 //     per trial, or interpolated in each backend's algebra: quaternion slerp
 //     or rotor power along a line, then integrated once).
@@ -17,7 +17,7 @@
 // the whole run (medians of the repeats; backends and cells interleaved).
 #include "cga/backend.hpp"
 #include "compare/stats.hpp"
-#include "core/simulator.hpp"
+#include "core/dynamics/simulator.hpp"
 #include "traditional/backend.hpp"
 
 #include <cstdio>

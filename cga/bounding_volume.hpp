@@ -1,14 +1,14 @@
 #pragma once
-// Bounding spheres, conformal algebra (issue #6, §2.4.1): the SphereOps policy
-// that core/bounding_volume.hpp (exhaustive search, Welzl), core/broadphase.hpp
-// (sort and sweep) and core/tree_broadphase.hpp (the sphere tree) run on. A
+// Bounding spheres, conformal algebra (§2.4.1): the SphereOps policy
+// that core/collision/bounding_volume.hpp (exhaustive search, Welzl), core/collision/broadphase.hpp
+// (sort and sweep) and core/collision/tree_broadphase.hpp (the sphere tree) run on. A
 // sphere is the dual sphere S = C − ½ρ²n (§2.4.1 after [7]), a Cl(4,1) vector
 // (5 numbers), kept normalised to S·n = −1 by every constructor here. Twin:
 // traditional/bounding_volume.hpp, with the same names in the same order: put
 // them side by side and only the algebra differs.
 #include "cga/geometry/inside.hpp"
 #include "cga/geometry/meet.hpp"
-#include "core/bounding_volume.hpp"
+#include "core/collision/bounding_volume.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -72,10 +72,11 @@ struct SphereOps {
   // twin's distance test): by inner products, overlap_by_inner_products below.
   // The report's meet (overlap_by_meet) decides the same, forming a
   // 10-component bivector to do it; the simulation runs the best form of the
-  // algebra, not the report's (issue #13: 7× the twin's time by the meet).
+  // algebra, not the report's (the meet costs several times the twin's
+  // time: bench/bounding_volume_bench.cpp).
   static bool overlap(const Sphere& s1, const Sphere& s2);
 
-  // The sphere trees' node operations (issue #14, §4.2.2; core/tree_broadphase.hpp),
+  // The sphere trees' node operations (§4.2.2; core/collision/tree_broadphase.hpp),
   // all from inner products of normalised dual spheres (S·n = −1, which every
   // constructor here keeps): S1² = ρ1², S2² = ρ2², S1·S2 = ½(ρ1² + ρ2² − d²).
   // The smallest sphere enclosing two: one of them when it holds the other;

@@ -1,12 +1,12 @@
 #pragma once
-// The narrowphase's algebra in conformal geometric algebra (issue #6,
-// §2.4.3–2.4.4): vertices as conformal points X = up(x), face planes as dual
+// The narrowphase's algebra in conformal geometric algebra
+// (§2.4.3–2.4.4): vertices as conformal points X = up(x), face planes as dual
 // planes π = n̂ + d n, a face test by the inner product X·π = n̂·x − d (each
-// body measured in a unit of its own size: core/shape.hpp, "Units"), edge axes by
+// body measured in a unit of its own size: core/collision/shape.hpp, "Units"), edge axes by
 // the dual of the outer product (a ∧ b)* in Cl(3,0), and the
 // meet/reciprocal-frame segment–triangle. What is built once per body and how
-// a pair reads it is written once in core/shape.hpp; the algorithms over it in
-// core/narrowphase.hpp. Twin: traditional/narrowphase.hpp.
+// a pair reads it is written once in core/collision/shape.hpp; the algorithms over it in
+// core/collision/narrowphase.hpp. Twin: traditional/narrowphase.hpp.
 //
 // The rotation reaches the vertices as the rotor's 3×3 matrix, applied once
 // per vertex: the outermorphism form that is GA's best practice for many
@@ -14,8 +14,8 @@
 #include "cga/algebra/cl3.hpp"
 #include "cga/geometry/entities.hpp"
 #include "cga/segment_triangle.hpp"
-#include "core/narrowphase.hpp"
-#include "core/shape.hpp"
+#include "core/collision/narrowphase.hpp"
+#include "core/collision/shape.hpp"
 
 #include <cmath>
 #include <vector>
@@ -30,7 +30,7 @@ struct NarrowAlgebra {
   static Point lift(const Vec3& x) { return up(x); }
   static Vec3 position(const Point& p) { return detail::euclid(p); }  // up() gives weight 1: no division
   // The power of two nearest below the size: X·π's terms of size |d|·½|x|²
-  // stay ≲ 1 (core/shape.hpp, "Units"); a dilation by it is exact.
+  // stay ≲ 1 (core/collision/shape.hpp, "Units"); a dilation by it is exact.
   static double unit(double size) { return std::ldexp(1.0, std::ilogb(size)); }
   // n̂ + d n: a mesh's normals are unit and a rotation keeps them so (to
   // rounding, as the twin uses them); cga::plane() would divide by |n| again.
@@ -51,7 +51,7 @@ struct NarrowAlgebra {
   [[gnu::flatten]] static double distance(const Plane& f, const Point& p) { return scalar_product(p, f); }
   static Vec3 edge_axis(const Vec3& da, const Vec3& db) { return to_eigen(axial(vector3(da) ^ vector3(db))); }
 
-  // The contact manifold's algebra (core/manifold.hpp): the dual plane through
+  // The contact manifold's algebra (core/collision/manifold.hpp): the dual plane through
   // X with normal s, X⌋(s ∧ n) = s + (s·x) n, written out (not unit: clipping
   // reads only signs and ratios); and where a segment crosses a plane, by the
   // meet of the line X0 ∧ X1 ∧ n with π (§1.6, as in segment_triangle.hpp):
@@ -67,7 +67,7 @@ struct NarrowAlgebra {
     return up(detail::euclid(d0 * p1 - d1 * p0) * (1 / (d0 - d1)));
   }
 
-  // Round shapes (core/round.hpp): a ball as the dual sphere S = up(c) − ½r² n
+  // Round shapes (core/collision/round.hpp): a ball as the dual sphere S = up(c) − ½r² n
   // (entities.hpp). Two spheres' separation from their inner product:
   // S1·S2 = ½(r1² + r2² − d²) and S·S = r², so d² = S1² + S2² − 2 S1·S2 =
   // (S1 − S2)², one scalar product of the difference. A point's distance from

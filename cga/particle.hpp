@@ -1,9 +1,9 @@
 #pragma once
 // The geometric algebra for particles: Cl(3,0) vectors, the scalar product, and
 // a × b as the vector dual to the plane a ∧ b. Particle dynamics and constraints
-// are written once over it in core/particle_system.hpp. Twin of traditional/particle.hpp.
+// are written once over it in core/dynamics/particle_system.hpp. Twin of traditional/particle.hpp.
 #include "cga/algebra/cl3.hpp"
-#include "core/particle_system.hpp"
+#include "core/dynamics/particle_system.hpp"
 
 #include <array>
 #include <span>

@@ -40,14 +40,14 @@ Layout layout(std::size_t b) {
 }
 }  // namespace
 
-RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vector<core::BodyProperties>& props) {
+RigidBodies::Model RigidBodies::build(const core::Scene& scene, const core::Model& model) {
   Model m;
   m.renormalise = scene.rigid_body.renormalise;
-  m.effects = core::body_effects(scene);
+  m.effects = model.effects;
   m.y0.assign(Model::stride * scene.bodies.size(), 0.0);
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const auto& body = scene.bodies[b];
-    const auto& p = props[b];
+    const core::BodyModel& p = model.bodies[b];
     m.names.push_back(body.name);
     const bool fixed = body.is_static;
     const Mat inertia = on_bivectors(p.inertia);
@@ -87,7 +87,7 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     if (body.inv_mass == 0) continue;  // static: never moves
     const Vector3 v = body.inv_mass * vec_at(y, at.p);
     const Rotor3 r = rotor_at(y, at.rot);
-    // Ω_body from the normalised rotor (issue #13). With R itself, R̃ L R and
+    // Ω_body from the normalised rotor. With R itself, R̃ L R and
     // the sandwich back to Ω each scale as |R|², so a drifting norm changed
     // the rotation rate as |R|⁴ and the error control paid for it in steps
     // (2.0× the matrix's steps at equal orientation error on the spinning
@@ -190,7 +190,7 @@ void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sampl
 // The narrowphase takes the rotor's 3×3 matrix: built once per body per query
 // and applied to every vertex (the outermorphism; docs/architecture.md "Fair
 // comparison"). The drifted rotor gives an exact rotation through the
-// homogeneous form over R R̃, as the quaternion does (issue #13: one policy).
+// homogeneous form over R R̃, as the quaternion does (one policy for both).
 collision::Pose RigidBodies::pose(const Model& m, std::span<const double> y, std::size_t b) {
   (void)m;
   const Layout at = layout(b);

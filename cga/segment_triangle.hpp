@@ -28,7 +28,7 @@
 // for the normalised plane.
 #include "cga/algebra/cl41.hpp"
 #include "cga/geometry/meet.hpp"
-#include "core/collision.hpp"
+#include "core/collision/collision.hpp"
 
 #include <array>
 #include <cmath>
@@ -59,7 +59,7 @@ struct PreparedTriangle {
     return through(up(l0), up(l1));
   }
   // The segment's ends already lifted (a narrowphase Body stores its vertices
-  // as conformal points: issue #13, no second up() per edge and triangle).
+  // as conformal points: no second up() per edge and triangle).
   // up() gives weight 1, so the Euclidean parts are the points themselves.
   std::optional<collision::SegmentHit> through(const ConformalPoint& L0, const ConformalPoint& L1) const {
     const Eigen::Vector3d l0 = detail::euclid(L0), l1 = detail::euclid(L1);
@@ -69,7 +69,7 @@ struct PreparedTriangle {
     // The meet π⌋(L0 ∧ L1 ∧ n) = α L1∧n − β L0∧n (above) is the flat point of
     // α L1 − β L0, of weight α − β (≠ 0: not parallel): its point is read
     // from α and β directly, without forming the line's trivector and the
-    // contraction (issue #13: the cga form took 2.1× the twin's time that way).
+    // contraction, which costs about twice as much (bench/narrowphase_bench.cpp).
     // Tested against an independent 3×3 solve (tests/narrowphase_cases.hpp);
     // the manifold's cut, the same formula, against the generic meet.
     const Eigen::Vector3d point = (alpha * l1 - beta * l0) / (alpha - beta);

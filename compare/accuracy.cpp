@@ -2,10 +2,12 @@
 
 #include "compare/machine.hpp"
 #include "compare/stats.hpp"
+#include "compare/stored.hpp"
 #include "compare/sweep.hpp"
 #include "core/error.hpp"
-#include "core/generators.hpp"
-#include "core/ode.hpp"
+#include "core/model/generators.hpp"
+#include "core/read_file.hpp"
+#include "core/dynamics/ode.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -16,7 +18,7 @@
 namespace gacompare::compare {
 
 namespace {
-using json = nlohmann::ordered_json;
+using json = nlohmann::json;
 
 bool reaches(double error, double target) { return !std::isnan(error) && error <= target; }
 
@@ -47,14 +49,27 @@ json plan_json(const AccuracyPlan& p) {
 }
 
 json read_cache(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) return json::object();
-  try {
-    json j = json::parse(in);
-    return j.is_object() ? j : json::object();
-  } catch (const nlohmann::json::exception& e) {
-    throw input_error(file.string() + ": cannot parse this accuracy cache: " + e.what());
-  }
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(file, ec))) return json::object();
+  json j = parse_stored(core::read_file(file, "accuracy cache"), file.string());
+  return j.is_object() ? j : json::object();
+}
+
+// A cached backend's setting, checked before it is trusted: the setting where
+// the search itself can land (a tolerance from 1e-13 to 1e-3, a step from dt /
+// 2^16 to dt; 1e-12 relative slack for rounding) and within the step budget,
+// its error in [0, target], its steps and trials counts within what a search
+// runs. Throws input_error naming the cache and the JSON path otherwise.
+AccuracySetting cached_setting(const Field& e, const std::string& backend, const core::Scene& scene, bool adaptive,
+                               double target) {
+  const double lo = adaptive ? tolerance_ladder().back() : step_ladder(scene.solver.dt).back();
+  const double hi = adaptive ? tolerance_ladder().front() : scene.solver.dt;
+  const double x = e["setting"].number(lo * (1 - 1e-12), hi * (1 + 1e-12));
+  if (!adaptive && scene.duration / x > scene.limits.max_steps)
+    e["setting"].fail("a step giving at most " + format_number("%g", scene.limits.max_steps) + " steps");
+  return {backend, with_setting(scene.solver, adaptive, x), e["error"].number(0, target),
+          e["steps"].whole(0, static_cast<std::uint64_t>(scene.limits.max_steps)),
+          static_cast<int>(e["trials"].whole(1, 100))};
 }
 }  // namespace
 
@@ -110,6 +125,8 @@ AccuracyPlan find_equal_accuracy(const core::Scene& written, double target, cons
                                  const std::filesystem::path& cache, bool quiet) {
   if (const auto why = accuracy_refusal(written); !why.empty()) throw input_error(why);
   const core::Scene scene = accuracy_scene(written);
+  // One model for every trial: they change the solver's settings only.
+  const auto model = std::make_shared<const core::Model>(core::compile(scene));
   AccuracyPlan plan;
   plan.scene = scene.name;
   plan.sha256 = scene.sha256;
@@ -121,27 +138,32 @@ AccuracyPlan find_equal_accuracy(const core::Scene& written, double target, cons
 
   // The cache: {"format": 1, "scenes": {name: {..., "method", "backends": {b: {...}}}}}.
   json all = read_cache(cache);
-  if (all.value("format", 0) == 1 && all.contains("scenes") && all["scenes"].contains(scene.name)) {
+  const bool format_1 = all.contains("format") && all["format"] == 1 && all.contains("scenes") && all["scenes"].is_object();
+  if (format_1 && all["scenes"].contains(scene.name) && all["scenes"][scene.name].is_object()) {
     const json& c = all["scenes"][scene.name];
-    bool ok = c.value("sha256", "") == plan.sha256 && c.value("duration", -1.0) == plan.duration &&
-              c.value("target", -1.0) == target && c.value("measure", "") == measure_name(plan.measure) &&
-              c.value("method", "") == method && c.contains("backends");
+    const auto is = [&](const char* key, const json& v) { return c.contains(key) && c[key] == v; };
+    bool ok = is("sha256", plan.sha256) && is("duration", plan.duration) && is("target", target) &&
+              is("measure", std::string(measure_name(plan.measure))) && is("method", method) && c.contains("backends") &&
+              c["backends"].is_object();
     for (const auto& b : backends) ok = ok && c["backends"].contains(b);
     if (ok) {
-      for (const auto& b : backends) {
-        const json& e = c["backends"][b];
-        plan.backends.push_back({b, with_setting(scene.solver, plan.adaptive, e.at("setting").get<double>()),
-                                 e.at("error").get<double>(), e.at("steps").get<std::uint64_t>(), e.value("trials", 0)});
+      const Field entry(cache.string(), c, "/scenes/" + scene.name);
+      try {
+        for (const auto& b : backends)
+          plan.backends.push_back(cached_setting(entry["backends"][b], b, scene, plan.adaptive, target));
+        plan.reused = true;
+        return plan;
+      } catch (const Error& e) {  // a setting out of range is not trusted: searched again
+        plan.backends.clear();
+        if (!quiet) std::cerr << "gacompare: " << e.what() << "; searching again\n";
       }
-      plan.reused = true;
-      return plan;
     }
   }
 
   core::Scene ref_scene = scene;
   ref_scene.solver = {core::SolverMethod::cash_karp45, scene.solver.dt, kReferenceTolerance, kReferenceTolerance,
                       scene.solver.error_norm};
-  const core::Run ref = run_backend(ref_scene, "traditional");
+  const core::Run ref = run_backend(ref_scene, model, "traditional");
   if (ref.error) throw run_error(scene.name + ": the reference run (cash_karp45 at 1e-14) failed: " + *ref.error);
 
   for (const auto& b : backends) {
@@ -151,7 +173,7 @@ AccuracyPlan find_equal_accuracy(const core::Scene& written, double target, cons
     auto error_of = [&](double x) {
       core::Scene s2 = scene;
       s2.solver = with_setting(scene.solver, plan.adaptive, x);
-      const core::Run run = run_backend(s2, b);
+      const core::Run run = run_backend(s2, model, b);
       steps.emplace_back(x, run.solver.steps_accepted);
       const double e = final_error(run, ref, plan.measure);
       if (!quiet)
@@ -183,7 +205,7 @@ AccuracyPlan find_equal_accuracy(const core::Scene& written, double target, cons
 
   json entry = plan_json(plan);
   entry["method"] = method;
-  if (all.value("format", 0) != 1 || !all.contains("scenes")) all = {{"format", 1}, {"scenes", json::object()}};
+  if (!format_1) all = {{"format", 1}, {"scenes", json::object()}};
   all["scenes"][scene.name] = entry;
   if (cache.has_parent_path()) std::filesystem::create_directories(cache.parent_path());
   write_file_atomically(cache, all.dump(1) + "\n");
@@ -193,14 +215,15 @@ AccuracyPlan find_equal_accuracy(const core::Scene& written, double target, cons
 SceneResult compare_at_accuracy(const core::Scene& written, const AccuracyPlan& plan, int repeats,
                                 const Progress& progress) {
   const core::Scene scene = accuracy_scene(written);
-  SceneResult result{scene, std::vector<BackendResult>(plan.backends.size())};
+  SceneResult result{scene, std::vector<BackendResult>(plan.backends.size()),
+                     std::make_shared<const core::Model>(core::compile(scene))};
   const std::size_t n = plan.backends.size();
   for (int r = 0; r < repeats; ++r) {
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t b = (r % 2 == 0) ? k : n - 1 - k;  // alternating who goes first
       core::Scene s = scene;
       s.solver = plan.backends[b].spec;
-      core::Run run = run_backend(s, plan.backends[b].backend);
+      core::Run run = run_backend(s, result.model, plan.backends[b].backend);
       auto& br = result.backends[b];
       br.profiles.push_back(run.profile);
       br.wall_seconds.push_back(run.wall_seconds);
@@ -252,10 +275,7 @@ std::string accuracy_section_md(const AccuracyPlan& plan, const SceneResult& res
 }
 
 void insert_section(const std::filesystem::path& report_md, const std::string& section) {
-  std::ifstream in(report_md);
-  std::stringstream buf;
-  buf << in.rdbuf();
-  std::string text = buf.str();
+  std::string text = core::read_file(report_md, "report");
   const auto eol = text.find('\n');
   if (eol == std::string::npos) text += "\n" + section;
   else text.insert(eol + 1, section);

@@ -1,5 +1,5 @@
 #pragma once
-// `gacompare compare --accuracy E` (issue #13 item 4): time at equal accuracy.
+// `gacompare compare --accuracy E`: time at equal accuracy.
 // Equal tolerance is not equal accuracy (the backends' states differ), so for
 // each backend this finds the tolerance (adaptive solver) or step (fixed-step
 // solver) at which its final error against a reference reaches E, and times
@@ -17,7 +17,7 @@
 // measure, so a rerun reuses them.
 #include "compare/metrics.hpp"
 #include "compare/runner.hpp"
-#include "core/scene.hpp"
+#include "core/model/scene.hpp"
 
 #include <nlohmann/json.hpp>
 

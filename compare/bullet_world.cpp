@@ -1,4 +1,4 @@
-// Bullet as a whole-simulation reference (issue #7). The scene's bodies go into
+// Bullet as a whole-simulation reference. The scene's bodies go into
 // a btDiscreteDynamicsWorld (Bullet 3.24, double precision: bullet-float64) with
 // our exact mass properties, and the world is stepped with a fixed step that
 // lands on every output time. What follows lists every choice that makes the
@@ -10,7 +10,7 @@
 //     speed is below it gets restitution 0. This is Bullet's resting rule: a cube
 //     dropped on a slab stops bouncing once its impact speed falls below 0.2 m/s
 //     (the rebound apex would be ε²·2 mm), where §2.5 would bounce on with ever
-//     smaller hops; our backends have their own resting rule (issue #7).
+//     smaller hops; our backends have their own resting rule.
 //   - Restitution is a velocity target, ε times the normal approach speed seen at
 //     the start of the step (after gravity's kick), for the contacts found at the
 //     start of the step: discrete, no time of impact. A body reverses from
@@ -44,7 +44,8 @@
 //     gap eats the bounce: the rebound speed becomes ε|v| − d/h < 0 a few steps
 //     running, and the cube that hit the slab at 3.1 m/s stopped dead, no bounce.
 //     With 0, only touching or penetrating points are solved. (This is the
-//     recipe Bullet's author gives for proper restitution: bullet3 issue #3094.)
+//     recipe Bullet's author gives for proper restitution:
+//     https://github.com/bulletphysics/bullet3/issues/3094.)
 //   - m_splitImpulsePenetrationThreshold = 0 (default −0.04 m). By default only
 //     contacts deeper than 4 cm get the energy-free split impulse; shallower ones
 //     are pushed out by Baumgarte velocity 0.2·depth/h, a kick of up to 0.6 m/s
@@ -57,7 +58,7 @@
 //     frictionless), combined per pair as our √(μ_a μ_b) through Bullet's hook
 //     gCalculateCombinedFrictionCallback (Bullet's default multiplies, as for
 //     restitution below); rolling and spinning friction 0 (our backends have
-//     neither). Bullet's Coulomb model differs from ours (core/collisions.hpp):
+//     neither). Bullet's Coulomb model differs from ours (core/collision/collisions.hpp):
 //     its friction rows are solved per contact point of the persistent manifold,
 //     after the normal rows in each of its 10 sweeps, each bounded by
 //     ±μ times that point's current normal impulse: one row along the relative
@@ -69,7 +70,7 @@
 //     it was made; without it points are refreshed each step. Bullet integrates
 //     positions after the contact solve (semi-implicit Euler: v += g h, solve,
 //     x += v h): no creep of our kind (ours integrates first and displaces
-//     resting contacts by ½ h Δv, core/collisions.hpp friction_displacement),
+//     resting contacts by ½ h Δv, core/collision/collisions.hpp friction_displacement),
 //     but positions ½ a h t off the exact parabola (short when braking: a
 //     stopping distance ½ v₀ h short).
 //     Damping 0. Sleeping disabled (DISABLE_DEACTIVATION on every dynamic body).
@@ -95,7 +96,7 @@
 //     give each body its own ε_x, so every pair gets our value exactly, whatever
 //     the per-body values. The hook is process-wide: simulate_bullet is not
 //     reentrant (the harness runs one simulation at a time).
-//   - Applied forces (the applied_forces effect, core/scene.hpp): before each
+//   - Applied forces (the applied_forces effect, core/model/scene.hpp): before each
 //     step, every force active at the step's midpoint is handed to Bullet with
 //     btRigidBody::applyForce(F, R·p), R the body's rotation at the start of the
 //     step (body -> world; the Bullet basis times Aᵀ, see Inertia below). Bullet
@@ -150,11 +151,9 @@
 #include "compare/bullet_world.hpp"
 
 #include "core/error.hpp"
-#include "core/invariants.hpp"
-#include "core/mass_properties.hpp"
-#include "core/mesh.hpp"
-#include "core/rigid_body.hpp"
-#include "core/simulator.hpp"
+#include "core/dynamics/invariants.hpp"
+#include "core/model/model.hpp"
+#include "core/dynamics/simulator.hpp"
 #include "core/stage.hpp"
 
 #include <btBulletCollisionCommon.h>
@@ -169,6 +168,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <variant>
 #include <vector>
@@ -199,7 +199,7 @@ Eigen::Matrix3d to_eigen(const btMatrix3x3& m) {
 
 bool finite(const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
-// ε_pair = min(ε_a, ε_b) and μ_pair = √(μ_a μ_b) (core/scene.hpp's rules),
+// ε_pair = min(ε_a, ε_b) and μ_pair = √(μ_a μ_b) (core/model/scene.hpp's rules),
 // installed while the world steps.
 btScalar min_restitution(const btCollisionObject* a, const btCollisionObject* b) {
   return std::min(a->getRestitution(), b->getRestitution());
@@ -244,19 +244,6 @@ struct World {
     for (auto& b : bodies) world.removeRigidBody(b.body.get());
   }
 };
-
-// The body's solid in its own coordinates, centred on its centre of mass: built
-// shapes are centred by construction (core/mesh.hpp); hull and mesh shapes keep
-// their file's coordinates and are moved by their centre of mass.
-core::Mesh centred_mesh(const core::Body& body) {
-  core::Mesh mesh = core::mesh_for(body.shape);
-  if (std::holds_alternative<core::HullShape>(body.shape) || std::holds_alternative<core::MeshShape>(body.shape))
-    mesh = mesh.transformed(Eigen::Matrix3d::Identity(), -core::mass_properties(mesh).centre_of_mass);
-  return mesh;
-}
-
-// The largest ball about the centre of mass inside the body.
-double inradius(const core::Mesh& centred) { return core::inradius(centred, Vec3::Zero()); }
 
 // Bullet's own shape for the body: btSphereShape for a sphere, btCapsuleShapeZ
 // for a capsule (whose margins are their radius, so they keep Bullet's
@@ -312,7 +299,7 @@ std::string first_nonfinite(const World& w, const core::Scene& scene) {
 
 }  // namespace
 
-std::string bullet_unsupported(const core::Scene& scene) {
+std::string bullet_unsupported(const core::Scene& scene, const core::Model* model) {
   if (!scene.generators.empty() || !scene.particles.empty())
     return "the scene has particles" +
            (scene.particles.empty() ? std::string(" (from generators)") : " ('" + scene.particles.front().name + "', ...)") +
@@ -327,21 +314,32 @@ std::string bullet_unsupported(const core::Scene& scene) {
              "' effect; the Bullet reference applies only gravity, collisions and applied forces (Bullet's damping is "
              "not our drag law)";
   if (scene.bodies.empty()) return "the scene has no bodies";
-  if (scene.find_effect<core::Collisions>())
-    for (const auto& body : scene.bodies) {
-      try {
-        const core::Convexity c = core::convexity(centred_mesh(body));
-        if (!c.convex) return "body '" + body.name + "' is not convex; Bullet would collide with its convex hull";
-      } catch (const Error&) {
-        // A shape that cannot be built is the scene's error, not Bullet's:
-        // simulate_bullet reports it as the backends do.
-      }
-    }
+  if (scene.find_effect<core::Collisions>() && model)
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+      if (!model->bodies[i].convex)
+        return "body '" + scene.bodies[i].name + "' is not convex; Bullet would collide with its convex hull";
   return "";
+}
+
+std::string bullet_unsupported(const core::Scene& scene) {
+  std::optional<core::Model> model;
+  try {
+    model = core::compile(scene);
+  } catch (const Error&) {
+    // A shape that cannot be built is the scene's error, not Bullet's:
+    // simulate_bullet reports it as the backends do.
+  }
+  return bullet_unsupported(scene, model ? &*model : nullptr);
 }
 
 core::Run simulate_bullet(const core::Scene& scene) {
   if (const std::string why = bullet_unsupported(scene); !why.empty())
+    throw input_error(scene.file.string() + ": bullet: " + why);
+  return simulate_bullet(scene, core::compile(scene));
+}
+
+core::Run simulate_bullet(const core::Scene& scene, const core::Model& model) {
+  if (const std::string why = bullet_unsupported(scene, &model); !why.empty())
     throw input_error(scene.file.string() + ": bullet: " + why);
 
   // As core::check_implemented says for the backends: a static body cannot be pushed.
@@ -353,9 +351,9 @@ core::Run simulate_bullet(const core::Scene& scene) {
 
   core::Run run;
   run.backend = kBackend;
-  const std::vector<core::BodyProperties> props = core::body_properties(scene);
+  core::require_volumes(scene, model);
   const core::Collisions* collisions = scene.find_effect<core::Collisions>();
-  const core::BodyEffects effects = core::body_effects(scene);
+  const core::BodyEffects& effects = model.effects;
   const Vec3 gravity = effects.gravity;  // zero without a gravity effect
   const double step = collisions ? collisions->step : kDefaultStep;
 
@@ -368,22 +366,15 @@ core::Run simulate_bullet(const core::Scene& scene) {
 
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const core::Body& body = scene.bodies[b];
-    const core::Mesh mesh = centred_mesh(body);
+    const core::BodyModel& bm = model.bodies[b];
+    const core::Mesh& mesh = *bm.mesh;  // about the centre of mass
     BulletBody bb;
-
-    const Eigen::Matrix3d& inertia = props[b].inertia;
-    Vec3 moments = inertia.diagonal();
-    const double off = std::max({std::abs(inertia(0, 1)), std::abs(inertia(0, 2)), std::abs(inertia(1, 2))});
-    if (off > 1e-12 * inertia.diagonal().cwiseAbs().maxCoeff()) {
-      const core::PrincipalAxes pa = core::principal_axes(inertia);
-      bb.principal = pa.axes;
-      moments = pa.moments;
-    }
-
+    bb.principal = bm.principal;
+    const Vec3& moments = bm.moments;
     bb.shape = bullet_shape(mesh, bb.principal);
 
     const bool fixed = body.is_static;
-    const double mass = fixed ? 0.0 : props[b].mass;
+    const double mass = fixed ? 0.0 : bm.mass;
     btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, bb.shape.get(),
                                                 fixed ? btVector3(0, 0, 0) : to_bullet(moments));
     ci.m_friction = collisions ? body.friction : 0.0;
@@ -392,7 +383,7 @@ core::Run simulate_bullet(const core::Scene& scene) {
     ci.m_linearDamping = 0;
     ci.m_angularDamping = 0;
     ci.m_additionalDamping = false;
-    ci.m_restitution = collisions ? body.restitution.value_or(collisions->restitution) : 0.0;
+    ci.m_restitution = collisions ? bm.restitution : 0.0;
     const Eigen::Quaterniond q(body.orientation[0], body.orientation[1], body.orientation[2], body.orientation[3]);
     ci.m_startWorldTransform = btTransform(to_bullet(Eigen::Matrix3d(q.toRotationMatrix() * bb.principal)),
                                            to_bullet(body.position));
@@ -405,7 +396,7 @@ core::Run simulate_bullet(const core::Scene& scene) {
       rb.setActivationState(DISABLE_DEACTIVATION);
       rb.setFlags(BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
       if (collisions) {
-        const double r = inradius(mesh);
+        const double r = bm.inradius;
         rb.setCcdMotionThreshold(0.5 * r);
         rb.setCcdSweptSphereRadius(r);
       }
@@ -435,7 +426,7 @@ core::Run simulate_bullet(const core::Scene& scene) {
     core::Sample s;
     s.t = t;
     observe(*world, s);
-    core::fill_invariants(scene, props, s);
+    core::fill_invariants(scene, model, s);
     run.samples.push_back(std::move(s));
   };
 

@@ -1,5 +1,6 @@
 #include "compare/check.hpp"
 
+#include "compare/escape.hpp"
 #include "compare/files.hpp"
 #include "compare/machine.hpp"
 #include "compare/metrics.hpp"
@@ -20,8 +21,6 @@ using json = nlohmann::ordered_json;
 
 json vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
 json vec(const Eigen::Vector4d& v) { return json::array({v[0], v[1], v[2], v[3]}); }
-
-Eigen::Vector3d vec3(const nlohmann::json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
 
 std::string fmt(double x) {
   char buf[32];
@@ -65,10 +64,10 @@ CheckLine time_ratio_line(const std::string& scene, const std::string& backend, 
   return l;
 }
 
-StateObjects state_objects(const core::Scene& scene) {
+StateObjects state_objects(const core::Scene& scene, const core::Model& model) {
   StateObjects o{scene.name, scene.output_every, {}, {}};
   for (const auto& p : scene.particles) o.particles.push_back(p.name);
-  const std::vector<double> radii = body_radii(scene);
+  const std::vector<double> radii = body_radii(model);
   for (std::size_t i = 0; i < scene.bodies.size(); ++i)
     o.bodies.push_back({scene.bodies[i].name, radii[i], scene.bodies[i].is_static});
   return o;
@@ -121,44 +120,21 @@ void StateBounds::take(Measure m, double value, double limit, const std::string&
 
 namespace {
 
-// A baseline run's final sample as a Sample of `scene`, with `velocities` false
-// when it stores none (baselines stored before velocities were); nullopt when
-// its particles or bodies are not the scene's.
-std::optional<core::Sample> baseline_sample(const core::Scene& scene, const nlohmann::json& base, bool& velocities) {
-  const auto& fin = base.at("final");
-  const auto& ps = fin.at("particles");
-  const auto& bs = fin.at("bodies");
-  if (ps.size() != scene.particles.size() || bs.size() != scene.bodies.size()) return std::nullopt;
+// A baseline run's final sample as a Sample of `scene`; nullopt when its
+// particles or bodies are not the scene's.
+std::optional<core::Sample> baseline_sample(const core::Scene& scene, const BaselineRun& base) {
+  if (base.particles.size() != scene.particles.size() || base.bodies.size() != scene.bodies.size()) return std::nullopt;
   core::Sample s;
-  s.t = fin.value("t", 0.0);
-  velocities = true;
+  s.t = base.t;
   for (const auto& p : scene.particles) {
-    if (!ps.contains(p.name)) return std::nullopt;
-    const auto& j = ps.at(p.name);
-    core::ParticleSample x;
-    if (j.is_array()) {  // the first format: the position alone
-      x.position = vec3(j);
-      velocities = false;
-    } else {
-      x.position = vec3(j.at("position"));
-      x.velocity = vec3(j.at("velocity"));
-    }
-    s.particles.push_back(x);
+    const auto it = base.particles.find(p.name);
+    if (it == base.particles.end()) return std::nullopt;
+    s.particles.push_back(it->second);
   }
   for (const auto& b : scene.bodies) {
-    if (!bs.contains(b.name)) return std::nullopt;
-    const auto& j = bs.at(b.name);
-    core::BodySample x;
-    x.position = vec3(j.at("position"));
-    const auto& q = j.at("orientation");
-    x.orientation = {q.at(0).get<double>(), q.at(1).get<double>(), q.at(2).get<double>(), q.at(3).get<double>()};
-    if (j.contains("velocity") && j.contains("angular_velocity")) {
-      x.velocity = vec3(j.at("velocity"));
-      x.angular_velocity = vec3(j.at("angular_velocity"));
-    } else {
-      velocities = false;
-    }
-    s.bodies.push_back(x);
+    const auto it = base.bodies.find(b.name);
+    if (it == base.bodies.end()) return std::nullopt;
+    s.bodies.push_back(it->second);
   }
   return s;
 }
@@ -197,7 +173,7 @@ json baseline_json(const SceneResult& r) {
           {"runs", runs}};
 }
 
-std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlohmann::json>& baseline,
+std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<Baseline>& baseline,
                                    std::optional<double> max_time_ratio) {
   std::vector<CheckLine> out;
   const auto& spec = r.scene.check;
@@ -217,12 +193,29 @@ std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlo
     if (spec.max_constraint_violation)
       out.push_back(bound(name, run.backend, "constraint violation (m)", violation, *spec.max_constraint_violation));
     if (spec.max_rotation_drift) out.push_back(bound(name, run.backend, "rotation drift", drift, *spec.max_rotation_drift));
+    // Where the scene says its bodies come to rest: the farthest each is from
+    // its rest position at any sample from `after` on.
+    for (const auto& rest : spec.rest) {
+      const auto body = std::find_if(r.scene.bodies.begin(), r.scene.bodies.end(),
+                                     [&](const core::Body& b) { return b.name == rest.body; });
+      const auto k = static_cast<std::size_t>(body - r.scene.bodies.begin());
+      double farthest = 0;
+      bool seen = false;
+      for (const auto& s : run.samples)
+        if (s.t >= spec.rest_after && k < s.bodies.size())
+          farthest = std::max(farthest, (s.bodies[k].position - rest.position).norm()), seen = true;
+      if (!seen) farthest = INFINITY;  // a run that never reached `after` has not come to rest
+      std::string what = "rest of ";
+      what += rest.body;
+      what += " (m)";
+      out.push_back(bound(name, run.backend, what, farthest, spec.rest_tolerance));
+    }
     // Physical sanity (compare/sanity.hpp): what agreement between backends and
     // with a baseline cannot see, since both may be wrong the same way.
-    for (auto& l : sanity_checks(r.scene, run)) out.push_back(std::move(l));
+    for (auto& l : sanity_checks(r.scene, *r.model, run)) out.push_back(std::move(l));
   }
   if (r.backends.size() > 1) {  // the first backend against each other one but Bullet (compare/metrics.hpp says why)
-    StateBounds between(state_objects(r.scene), spec.max_divergence);
+    StateBounds between(state_objects(r.scene, *r.model), spec.max_divergence);
     for (std::size_t b = 1; b < r.backends.size(); ++b) {
       if (r.backends[b].run.backend == "bullet") continue;
       const auto& x = r.backends[0].run.samples;
@@ -236,28 +229,40 @@ std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlo
   }
 
   if (!baseline) return out;
-  if (baseline->value("sha256", "") != r.scene.sha256) {
+  if (baseline->sha256 != r.scene.sha256 || baseline->scene != r.scene.name) {
     out.push_back({name, "all", "baseline", 0, 0, CheckLine::Verdict::fail,
-                   "the scene file changed since its baseline was stored (sha256 differs); refresh it with --update"});
+                   baseline->scene != r.scene.name
+                       ? "the baseline is of another scene (" + baseline->scene + "); refresh it with --update"
+                       : "the scene file changed since its baseline was stored (sha256 differs); refresh it with --update"});
     return out;
   }
   for (const auto& b : r.backends) {
-    const nlohmann::json* base = nullptr;
-    for (const auto& run : baseline->at("runs"))
-      if (run.at("backend") == b.run.backend) base = &run;
-    if (!base) {
-      out.push_back({name, b.run.backend, "baseline", 0, 0, CheckLine::Verdict::info, "no stored run for this backend"});
+    const BaselineRun* base = nullptr;
+    for (const auto& run : baseline->runs)
+      if (run.backend == b.run.backend) base = &run;
+    if (!base) {  // a baseline that lacks a backend checks less than it should: never a pass by omission
+      out.push_back({name, b.run.backend, "baseline", 0, 0, CheckLine::Verdict::fail,
+                     "the baseline stores no run of this backend; store one with --update"});
       continue;
     }
     if (b.run.error || b.run.samples.empty()) continue;
-    bool velocities = false;
-    const auto stored = baseline_sample(r.scene, *base, velocities);
+    // The same scene samples at the same times: a final time that differs is
+    // another run's state (relative 1e-12: a time is k · every, computed alike).
+    const double now_t = b.run.samples.back().t;
+    if (!(std::abs(base->t - now_t) <= 1e-12 * std::max(1.0, std::abs(now_t)))) {
+      out.push_back({name, b.run.backend, "baseline", 0, 0, CheckLine::Verdict::fail,
+                     "the baseline's final state is at t = " + fmt(base->t) + " s, this run's at t = " + fmt(now_t) +
+                         " s; refresh it with --update"});
+      continue;
+    }
+    const bool velocities = base->velocities;
+    const auto stored = baseline_sample(r.scene, *base);
     if (!stored) {
       out.push_back({name, b.run.backend, "distance from baseline, final state (m)", INFINITY, spec.baseline_tolerance,
                      CheckLine::Verdict::fail, "the scene's particles or bodies differ from the baseline's"});
       continue;
     }
-    StateBounds from(state_objects(r.scene), spec.baseline_tolerance);
+    StateBounds from(state_objects(r.scene, *r.model), spec.baseline_tolerance);
     from.add(b.run.samples.back(), *stored);
     for (const Measure m : kMeasures) {
       const auto what = line_name(m, "distance from baseline, final state (m)", " from baseline, final state");
@@ -267,15 +272,14 @@ std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlo
     if (!velocities)
       out.push_back({name, b.run.backend, "velocities from baseline", 0, 0, CheckLine::Verdict::info,
                      "not checked: this baseline stores no velocities (stored before they were); refresh it with --update"});
-    const double then = base->value("wall_seconds", 0.0), now = spread(b.wall_seconds).median;
+    const double then = base->wall_seconds, now = spread(b.wall_seconds).median;
     if (!max_time_ratio) {
       if (then > 0)
         out.push_back({name, b.run.backend, "time / baseline time", now / then, 0, CheckLine::Verdict::info,
                        "reported, not checked (--max-time-ratio R checks it)"});
       continue;
     }
-    std::vector<double> before;
-    if (base->contains("wall_seconds_each_repeat")) before = base->at("wall_seconds_each_repeat").get<std::vector<double>>();
+    const std::vector<double>& before = base->wall_seconds_each_repeat;
     out.push_back(time_ratio_line(name, b.run.backend, "time / baseline time", before, b.wall_seconds,
                                   max_time_ratio,
                                   before.size() < 2 ? "this baseline stores no repeats' times; refresh it with --update"
@@ -289,10 +293,10 @@ std::string check_table(const std::vector<CheckLine>& lines) {
   o << "| scene | backend | check | value | bound | result |\n|---|---|---|---:|---:|---|\n";
   for (const auto& l : lines) {
     const char* v = l.verdict == CheckLine::Verdict::pass ? "pass" : l.verdict == CheckLine::Verdict::fail ? "**FAIL**" : "info";
-    o << "| " << l.scene << " | " << l.backend << " | " << l.what << " | "
+    o << "| " << md_text(l.scene) << " | " << md_text(l.backend) << " | " << md_text(l.what) << " | "
       << (l.verdict == CheckLine::Verdict::info && l.value == 0 ? std::string("–") : fmt(l.value)) << " | "
       << (l.verdict == CheckLine::Verdict::info ? std::string("–") : l.what == "run" || l.what == "baseline" ? std::string("–") : fmt(l.bound))
-      << " | " << v << (l.note.empty() ? "" : ": " + l.note) << " |\n";
+      << " | " << v << (l.note.empty() ? "" : ": " + md_text(l.note)) << " |\n";
   }
   return o.str();
 }

@@ -8,6 +8,7 @@
 // as a ratio and fails only with --max-time-ratio (check_scene): these machines are noisy.
 #include "compare/metrics.hpp"
 #include "compare/runner.hpp"
+#include "compare/stored.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -28,20 +29,8 @@ struct CheckLine {
   std::string note;  // why it failed, or what an info line means
 };
 
-// What the state bounds need to know of a scene's objects, in scene order:
-// from a Scene (state_objects) or from a results.json (`gacompare diff`).
-struct StateObjects {
-  std::string scene;
-  double output_every = 0;  // Δt, s
-  std::vector<std::string> particles;
-  struct Body {
-    std::string name;
-    double radius = 0;  // compare/metrics.hpp's body_radii
-    bool is_static = false;
-  };
-  std::vector<Body> bodies;
-};
-StateObjects state_objects(const core::Scene& scene);
+// StateObjects (compare/stored.hpp) of a scene.
+StateObjects state_objects(const core::Scene& scene, const core::Model& model);
 
 // "No point of a body moves by more than d" as a bound on each measure: the
 // position by d; the orientation by d / r (a turn by θ moves a point at r from
@@ -93,7 +82,7 @@ nlohmann::ordered_json baseline_json(const SceneResult& r);
 // wall time per repeat, bootstrap_unpaired_ratio: the baseline's repeats and these
 // did not run side by side) lies above R, or when there is no interval (one
 // repeat, or a baseline stored without its repeats' times).
-std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<nlohmann::json>& baseline,
+std::vector<CheckLine> check_scene(const SceneResult& r, const std::optional<Baseline>& baseline,
                                    std::optional<double> max_time_ratio = std::nullopt);
 
 // DIR/<scene name>.json

@@ -5,7 +5,7 @@
 #include "compare/referee.hpp"
 #include "compare/stats.hpp"
 #include "core/error.hpp"
-#include "core/separating_axis.hpp"
+#include "core/collision/separating_axis.hpp"
 #include "traditional/narrowphase.hpp"
 
 #include <Eigen/Geometry>

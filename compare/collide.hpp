@@ -1,10 +1,10 @@
 #pragma once
-// `gacompare collide CASES.json...` (issue #6): every pair through the two
+// `gacompare collide CASES.json...`: every pair through the two
 // backends' narrowphases (the report's detector, with the separating-axis fast
 // path for depth and normal), the exact separating-axis reference, FCL and
 // Bullet; one JSON entry per pair, the agreement table, and the disagreements
 // written as replayable case files.
-#include "core/collision_cases.hpp"
+#include "answers/collision_cases.hpp"
 
 #include <nlohmann/json.hpp>
 

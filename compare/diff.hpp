@@ -19,16 +19,12 @@
 
 namespace gacompare::compare {
 
-// One scene's results.json and where it was read from.
-struct RunFile {
-  std::filesystem::path file;
-  nlohmann::json results;
-};
-
-// A results.json, or a report folder: its results.json (one scene) or each of
-// its scene folders' (a run of several). Throws input_error naming the path
-// when it is neither, or a file is not a gacompare results.json.
-std::vector<RunFile> read_runs(const std::filesystem::path& path);
+// A results.json (followed if a link: the user named it), or a report folder:
+// its results.json (one scene) or each of its scene folders' (a run of
+// several), never through a link. Each is read and checked as
+// compare/stored.hpp says; throws input_error naming the path when it is
+// neither, or the file and JSON path of what is wrong in one.
+std::vector<StoredResults> read_runs(const std::filesystem::path& path);
 
 struct DiffOptions {
   // Fail when a time ratio's whole interval lies above this; nullopt: report only.
@@ -38,16 +34,15 @@ struct DiffOptions {
 };
 
 // Every scene in both, in A's order: the time lines, then the state lines, of
-// each backend in both; a scene or backend in one only is an info line, as is a
-// scene whose file changed (sha256), whose states are then not compared. A run
-// that stopped early in B (and not in A) fails. Throws input_error naming the
-// file and JSON path where a results.json lacks what the diff reads (one
-// written before results.json carried its scene's bodies: run it again).
-std::vector<CheckLine> diff_runs(const std::vector<RunFile>& a, const std::vector<RunFile>& b,
+// each backend in both. What B lacks fails (a scene or a backend's run in A
+// only, samples B does not have or at other times, a run that stopped early in
+// B and not in A, no scene in common at all); what B adds is an info line, as
+// is a scene whose file changed (sha256), whose states are then not compared.
+std::vector<CheckLine> diff_runs(const std::vector<StoredResults>& a, const std::vector<StoredResults>& b,
                                  const DiffOptions& options);
 
 // A's and B's provenance, one line each: path, commit (dirty or not), CPU,
 // usable CPUs, load average at the start, date, repeats.
-std::string diff_header(const std::vector<RunFile>& a, const std::vector<RunFile>& b);
+std::string diff_header(const std::vector<StoredResults>& a, const std::vector<StoredResults>& b);
 
 }  // namespace gacompare::compare

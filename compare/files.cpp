@@ -1,9 +1,11 @@
 #include "compare/files.hpp"
 
 #include "core/error.hpp"
-#include "core/sha256.hpp"
+#include "core/model/sha256.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <set>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -141,6 +143,16 @@ FolderLock::FolderLock(const fs::path& dir, bool claimed) : dir_(dir) {
     refuse(errno == EWOULDBLOCK
                ? "another gacompare is writing this folder; wait for it to finish or give another --out"
                : "cannot lock the output folder: " + reason(errno));
+  // access(2) answers from the permissions alone (root passes it under /proc
+  // and /sys): a file made there, and removed, says whether files can be.
+  int probe = ::openat(fd_, ".", O_TMPFILE | O_WRONLY | O_CLOEXEC, 0600);
+  if (probe < 0 && (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL)) {
+    const fs::path named = temporary_for(dir / "probe");
+    probe = ::open(named.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (probe >= 0) ::unlink(named.c_str());
+  }
+  if (probe < 0) refuse("cannot write in the output folder: " + reason(errno));
+  ::close(probe);
   remove_temporaries(dir, 2);
 }
 
@@ -152,6 +164,98 @@ FolderLock::~FolderLock() {
   if (fd_ < 0) return;
   if (made_) ::rmdir(dir_.c_str());  // only when empty: rmdir never removes a file
   ::close(fd_);                       // releases the lock
+}
+
+namespace {
+
+// What gacompare writes in an output folder: a run's reports (one scene's, or
+// a summary and a folder per scene), an accuracy search's, a sweep's.
+bool written_by_us(const fs::path& p) {
+  static const std::set<std::string> names = {"results.json", "report.md",    "report.html", "stages.csv",
+                                              "trajectories.csv", "replay.html", "summary.json", "accuracy.json",
+                                              "accuracy.md", "sweep.json",   "sweep.md",    "sweep.csv",
+                                              "sweep.html"};
+  const std::string name = p.filename().string();
+  return names.count(name) || name.ends_with("_work_precision.svg") || is_temporary(p);
+}
+
+// The first entry of `dir` (or of a folder in it: a scene's reports, a sweep's
+// cells) that gacompare did not write there; empty when there is none.
+fs::path foreign_entry(const fs::path& dir, int depth = 1) {
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const auto status = it->symlink_status(ec);
+    if (fs::is_regular_file(status) && (written_by_us(it->path()) || (depth == 0 && it->path().extension() == ".json")))
+      continue;
+    if (fs::is_directory(status) && depth > 0) {
+      if (auto f = foreign_entry(it->path(), depth - 1); !f.empty()) return f;
+      continue;
+    }
+    return it->path();
+  }
+  return ec ? dir : fs::path();
+}
+
+// The folder a --out names, absolute and without a trailing "/." (a link to a
+// folder: the folder), so that its parent and its name are known.
+fs::path output_folder(const fs::path& out) {
+  std::error_code ec, link;
+  fs::path p = fs::absolute(out, ec).lexically_normal();
+  if (!p.has_filename()) p = p.parent_path();
+  if (fs::is_symlink(fs::symlink_status(p, link)))
+    if (const fs::path real = fs::canonical(p, link); !link) p = real;
+  if (ec || p == p.root_path()) throw input_error(out.string() + ": cannot be the output folder (a run replaces it whole)");
+  return p;
+}
+
+}  // namespace
+
+StagedFolder::StagedFolder(const fs::path& out, bool claimed) : out_(output_folder(out)), lock_(out_, claimed) {
+  if (const fs::path f = foreign_entry(out_); !f.empty())
+    throw input_error(out_.string() + ": holds " + f.string() +
+                      ", which gacompare did not write there; a run replaces the whole folder: give an empty or new --out");
+  // The sibling a killed run left: nobody else writes this folder (its lock is held).
+  std::string prefix = ".";  // piece by piece: "." + string trips GCC 12's false -Wrestrict (bug 105651)
+  prefix += out_.filename().string();
+  prefix += ".staging-";
+  std::error_code ec;
+  for (fs::directory_iterator it(out_.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(prefix, 0) == 0 && name.size() > prefix.size() &&
+        name.find_first_not_of("0123456789", prefix.size()) == std::string::npos)
+      fs::remove_all(it->path(), ec);
+  }
+  staging_ = out_.parent_path() / (prefix + std::to_string(::getpid()));
+  fs::remove_all(staging_, ec);
+  if (::mkdir(staging_.c_str(), 0777) != 0)
+    throw input_error(out_.string() + ": cannot create " + staging_.filename().string() +
+                      " beside it, where the run's files are written before they replace the folder whole: " +
+                      reason(errno));
+}
+
+StagedFolder::~StagedFolder() {
+  std::error_code ec;
+  if (!committed_) fs::remove_all(staging_, ec);
+}
+
+void StagedFolder::commit() {
+  std::error_code ec;
+  // One rename swaps the two: the previous folder lands at the staging name.
+  if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, out_.c_str(), RENAME_EXCHANGE) == 0) {
+    committed_ = true;
+    fs::remove_all(staging_, ec);
+    return;
+  }
+  if (errno != EINVAL && errno != ENOSYS && errno != EOPNOTSUPP)
+    throw run_error(out_.string() + ": cannot put the finished folder in place: " + reason(errno));
+  // A file system without the exchange: two renames, the previous folder kept
+  // beside it (.NAME.staging-PID-old) until the new one is in place.
+  const fs::path old = staging_.string() + "-old";
+  fs::remove_all(old, ec);
+  if (::rename(out_.c_str(), old.c_str()) != 0 || ::rename(staging_.c_str(), out_.c_str()) != 0)
+    throw run_error(out_.string() + ": cannot put the finished folder in place: " + reason(errno));
+  committed_ = true;
+  fs::remove_all(old, ec);
 }
 
 fs::path claim_default_folder(const std::string& what, const std::string& date) {

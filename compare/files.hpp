@@ -1,6 +1,5 @@
 #pragma once
-// The files and folders gacompare writes (issue #16 items 1 and 7, issue #15's
-// unique default folders): a run killed at any moment, or two runs given the
+// The files and folders gacompare writes, and its unique default folders: a run killed at any moment, or two runs given the
 // same --out, never leave half a file or one run's results beside another's
 // report.
 #include <filesystem>
@@ -29,8 +28,9 @@ std::string file_name_for(const std::string& name);
 // with flock(2), which the kernel releases when the process ends, kill -9
 // included, so a lock is never left behind. Temporaries a killed run left in
 // the folder (and its subfolders) are removed once the lock is held. Throws
-// input_error (exit 2) naming the folder when it cannot be created or written,
-// or when another gacompare holds it. A folder it made (or that was `claimed`
+// input_error (exit 2) naming the folder when it cannot be created or written
+// (a file is made and removed there to know: access(2) says yes to root under
+// /proc), or when another gacompare holds it. A folder it made (or that was `claimed`
 // for it, claim_default_folder) and that is still empty when the lock goes is
 // removed: a run refused before writing anything leaves no trace.
 class FolderLock {
@@ -45,6 +45,34 @@ class FolderLock {
   int fd_ = -1;
   std::filesystem::path dir_;
   bool made_ = false;
+};
+
+// An output folder written whole or not at all (run, compare, merge): its
+// files go into a sibling folder, .NAME.staging-PID, made before any work (a
+// parent that cannot be written is refused then, exit 2, not after the runs),
+// and commit() puts that folder in NAME's place in one rename (Linux's
+// RENAME_EXCHANGE: NAME is at every moment the previous complete folder or
+// the new one), then removes the previous one. A run that fails, or is
+// killed, leaves NAME as it was; the sibling a killed run left is removed by
+// the next run given NAME (under NAME's lock, FolderLock). Since the whole
+// folder is replaced, NAME must be new, empty, or hold only what gacompare
+// writes there (its reports, a sweep's cells); anything else is refused, exit
+// 2, before any work. NAME may be a link to a folder: that folder is replaced.
+// Throws input_error naming the folder.
+class StagedFolder {
+ public:
+  explicit StagedFolder(const std::filesystem::path& out, bool claimed = false);
+  StagedFolder(const StagedFolder&) = delete;
+  StagedFolder& operator=(const StagedFolder&) = delete;
+  ~StagedFolder();
+  const std::filesystem::path& path() const { return staging_; }  // where the files go
+  // Puts the folder in place. Throws run_error naming the folder when it cannot.
+  void commit();
+
+ private:
+  std::filesystem::path out_, staging_;
+  FolderLock lock_;
+  bool committed_ = false;
 };
 
 // The default output folder, reports/<file_name_for(what)>-<UTC date>, made

@@ -12,8 +12,12 @@
 #include "compare/runner.hpp"
 #include "compare/suggest.hpp"
 #include "compare/sweep.hpp"
+#include "compare/escape.hpp"
+#include "compare/stored.hpp"
 #include "core/error.hpp"
-#include "core/scene.hpp"
+#include "core/model/model.hpp"
+#include "core/model/scene.hpp"
+#include "core/read_file.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -38,12 +42,13 @@ using namespace gacompare;
 
 namespace {
 
-// What a scene may ask of a run (core/budget.hpp): the defaults, raised by
+// What a scene may ask of a run (core/model/budget.hpp): the defaults, raised by
 // --max-samples, --max-steps and --max-memory.
 core::Limits limits;
 
-std::vector<core::Scene> load_all(const std::vector<std::string>& files) {
-  std::vector<core::Scene> scenes;
+// Each scene loaded and its model compiled once, for every run of it.
+std::vector<core::Compiled> load_all(const std::vector<std::string>& files) {
+  std::vector<core::Compiled> scenes;
   std::set<std::string> names;
   for (const auto& f : files) {
     std::error_code ec;
@@ -51,9 +56,10 @@ std::vector<core::Scene> load_all(const std::vector<std::string>& files) {
     if (std::find(backends.begin(), backends.end(), f) != backends.end() && !fs::is_regular_file(f, ec))
       throw input_error("'" + f + "' is a backend, not a scene file: give --backends comma-separated before the "
                         "scenes (--backends traditional,cga) or after them");
-    scenes.push_back(core::load_scene(f, limits));
-    if (!names.insert(scenes.back().name).second)
-      throw input_error(f + ": scene name '" + scenes.back().name + "' is used by another scene on the command line");
+    scenes.push_back(core::load_compiled(f, limits));
+    const std::string& name = scenes.back().scene.name;
+    if (!names.insert(name).second)
+      throw input_error(f + ": scene name '" + name + "' is used by another scene on the command line");
   }
   return scenes;
 }
@@ -78,17 +84,17 @@ compare::Progress progress_line(const std::string& scene, std::size_t k, std::si
   };
 }
 
-int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std::string>& backends,
+int run_and_report(const std::vector<core::Compiled>& scenes, const std::vector<std::string>& backends,
                    compare::Selection selection, int repeats, fs::path out, bool quiet) {
   const bool claimed = out.empty();
-  if (claimed) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
-  const compare::FolderLock lock(out, claimed);  // before any work: a bad --out is exit 2 now, not after the runs
+  if (claimed) out = default_out(scenes.size() == 1 ? scenes.front().scene.name : "compare");
+  compare::StagedFolder folder(out, claimed);  // before any work: a bad --out is exit 2 now, not after the runs
   const compare::MachineInfo machine = compare::machine_info();  // the load before this run adds its own
   std::vector<compare::SceneResult> results;
   bool failed = false;
   for (std::size_t k = 0; k < scenes.size(); ++k) {
-    const auto& scene = scenes[k];
-    results.push_back(compare::compare_scene(scene, backends, repeats, selection,
+    const auto& scene = scenes[k].scene;
+    results.push_back(compare::compare_scene(scene, scenes[k].model, backends, repeats, selection,
                                              progress_line(scene.name, k, scenes.size(), quiet)));
     for (const auto& b : results.back().backends)
       if (b.run.error) {
@@ -96,29 +102,37 @@ int run_and_report(const std::vector<core::Scene>& scenes, const std::vector<std
         failed = true;
       }
   }
-  compare::write_reports(out, results, compare::finished(machine), repeats);
+  compare::write_reports(folder.path(), results, compare::finished(machine), repeats);
+  folder.commit();
   std::cout << out.string() << "\n";
   return failed ? 1 : 0;
 }
 
 // `compare --accuracy E`: each backend at the tolerance or step that reaches E
 // (compare/accuracy.hpp), the settings cached in DIR/accuracy.json, then timed.
-int run_at_accuracy(const std::vector<core::Scene>& scenes, std::vector<std::string> backends, double target,
+int run_at_accuracy(const std::vector<core::Compiled>& compiled, std::vector<std::string> backends, double target,
                     int repeats, fs::path out, bool quiet) {
+  std::vector<core::Scene> scenes;  // each trial compiles its own model (compare/accuracy.cpp)
+  for (const auto& c : compiled) scenes.push_back(c.scene);
   const bool claimed = out.empty();
   if (claimed) out = default_out(scenes.size() == 1 ? scenes.front().name : "compare");
-  const compare::FolderLock lock(out, claimed);
+  compare::StagedFolder folder(out, claimed);
+  const fs::path staged = folder.path();
   const compare::MachineInfo machine = compare::machine_info();
   std::erase(backends, "bullet");  // no tolerance to search: Bullet steps at a fixed 1/240 s with its own contacts
   if (backends.empty()) throw input_error("--accuracy: compares traditional and cga; name at least one of them");
   for (const auto& scene : scenes)  // refuse before anything runs
     if (const auto why = compare::accuracy_refusal(scene); !why.empty()) throw input_error(why);
+  // The settings a previous run found go on into the new folder, checked there (compare/accuracy.hpp).
+  std::error_code none;
+  if (fs::exists(fs::symlink_status(out / "accuracy.json", none)))
+    compare::write_file_atomically(staged / "accuracy.json", core::read_file(out / "accuracy.json", "accuracy cache"));
   std::vector<compare::SceneResult> results;
   std::vector<compare::AccuracyPlan> plans;
   bool failed = false;
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     const auto& scene = scenes[k];
-    plans.push_back(compare::find_equal_accuracy(scene, target, backends, out / "accuracy.json", quiet));
+    plans.push_back(compare::find_equal_accuracy(scene, target, backends, staged / "accuracy.json", quiet));
     if (!quiet)
       std::cerr << "gacompare: " << scene.name << ": settings " << (plans.back().reused ? "reused" : "found") << "\n";
     results.push_back(
@@ -129,47 +143,42 @@ int run_at_accuracy(const std::vector<core::Scene>& scenes, std::vector<std::str
         failed = true;
       }
   }
-  compare::write_reports(out, results, compare::finished(machine), repeats, target);
+  compare::write_reports(staged, results, compare::finished(machine), repeats, target);
   std::string all;
   for (std::size_t k = 0; k < results.size(); ++k) {
     const std::string section = compare::accuracy_section_md(plans[k], results[k]);
-    compare::insert_section(results.size() == 1 ? out / "report.md" : out / compare::file_name_for(results[k].scene.name) / "report.md", section);
-    all += "\n# " + results[k].scene.name + "\n" + section;
+    compare::insert_section(results.size() == 1 ? staged / "report.md" : staged / compare::file_name_for(results[k].scene.name) / "report.md", section);
+    all += "\n# " + compare::md_text(results[k].scene.name) + "\n" + section;
   }
-  compare::write_file_atomically(out / "accuracy.md", "# Time at equal accuracy\n" + all);
+  compare::write_file_atomically(staged / "accuracy.md", "# Time at equal accuracy\n" + all);
+  folder.commit();
   std::cout << out.string() << "\n";
   return failed ? 1 : 0;
 }
 
-// Reads a stored baseline; nullopt when there is none. A file that is there but
-// cannot be read or parsed is an input error naming it.
-std::optional<nlohmann::json> read_baseline(const fs::path& file) {
+// Reads a stored baseline (compare/stored.hpp); nullopt when there is none. A
+// file that is there but is not a baseline is an input error naming it.
+std::optional<compare::Baseline> read_baseline(const fs::path& file) {
   std::error_code ec;
-  if (!fs::exists(file, ec)) return std::nullopt;
-  std::ifstream in(file);
-  if (!in) throw input_error(file.string() + ": cannot read this baseline");
-  try {
-    auto j = nlohmann::json::parse(in);
-    if (!j.is_object() || !j.contains("runs") || !j.at("runs").is_array())
-      throw input_error(file.string() + ": not a gacompare baseline (expected an object with \"runs\")");
-    return j;
-  } catch (const nlohmann::json::exception& e) {
-    throw input_error(file.string() + ": cannot parse this baseline: " + e.what());
-  }
+  if (!fs::exists(fs::symlink_status(file, ec))) return std::nullopt;
+  return compare::read_baseline(file);
 }
 
-// The table of check lines on stdout and "WHAT: n passed, m failed"; 1 when one failed.
+// The table of check lines on stdout and "WHAT: n passed, m failed"; 1 when one
+// failed, or when none passed: a check that compared nothing has shown nothing.
 int print_lines(const std::vector<compare::CheckLine>& lines, const char* what) {
   std::cout << compare::check_table(lines);
   auto count = [&](compare::CheckLine::Verdict v) {
     return std::count_if(lines.begin(), lines.end(), [&](const auto& l) { return l.verdict == v; });
   };
-  const auto failed = count(compare::CheckLine::Verdict::fail);
-  std::cout << "\n" << what << ": " << count(compare::CheckLine::Verdict::pass) << " passed, " << failed << " failed\n";
-  return failed ? 1 : 0;
+  const auto failed = count(compare::CheckLine::Verdict::fail), passed = count(compare::CheckLine::Verdict::pass);
+  std::cout << "\n" << what << ": " << passed << " passed, " << failed << " failed\n";
+  if (passed == 0 && failed == 0)
+    std::cerr << "gacompare: " << what << ": nothing was compared (0 passed): that is a failure, not a pass\n";
+  return failed || passed == 0 ? 1 : 0;
 }
 
-int check_scenes(const std::vector<core::Scene>& scenes, const fs::path& baseline_dir, bool update, int repeats,
+int check_scenes(const std::vector<core::Compiled>& scenes, const fs::path& baseline_dir, bool update, int repeats,
                  std::optional<double> max_time_ratio, bool quiet) {
   std::error_code ec;
   if (max_time_ratio && update) throw input_error("--max-time-ratio: checks against a baseline; not with --update");
@@ -181,7 +190,7 @@ int check_scenes(const std::vector<core::Scene>& scenes, const fs::path& baselin
   if (update) lock.emplace(baseline_dir);
   std::vector<compare::CheckLine> lines;
   for (std::size_t k = 0; k < scenes.size(); ++k) {
-    const auto& scene = scenes[k];
+    const auto& scene = scenes[k].scene;
     const fs::path file = compare::baseline_path(baseline_dir, scene.name);
     const auto baseline = read_baseline(file);
     if (!baseline && !update)
@@ -191,7 +200,7 @@ int check_scenes(const std::vector<core::Scene>& scenes, const fs::path& baselin
     // integrator, another contact model: compare/bullet_world.cpp), so neither a
     // Bullet baseline nor "the backends agree" with Bullet in it would mean a
     // regression; `gacompare compare` sets Bullet beside them instead.
-    const auto result = compare::compare_scene(scene, {"traditional", "cga"}, repeats, compare::Selection::exactly,
+    const auto result = compare::compare_scene(scene, scenes[k].model, {"traditional", "cga"}, repeats, compare::Selection::exactly,
                                                progress_line("check " + scene.name, k, scenes.size(), quiet));
     auto scene_lines = compare::check_scene(result, update ? std::nullopt : baseline, max_time_ratio);
     lines.insert(lines.end(), scene_lines.begin(), scene_lines.end());
@@ -254,31 +263,28 @@ nlohmann::ordered_json sweep_manifest(const core::Scene& scene, const compare::S
           {"build", spec.build}, {"units", ids}};
 }
 
-// The units' cells that are done with this key; `missing` counts the others,
-// `stale` those of them whose cell is there but was written with another key
-// or format (compare/sweep.hpp, cell_key): they are run again.
-std::vector<nlohmann::json> read_units(const fs::path& cells, const std::vector<compare::Unit>& units,
-                                       const nlohmann::json& key, std::size_t& missing, std::size_t* stale = nullptr) {
-  std::vector<nlohmann::json> out;
+// The units' cells that are done with this key (each read and checked:
+// compare/stored.hpp); `missing` counts the others, `stale` those of them whose
+// cell is there but was written with another key or format (compare/sweep.hpp,
+// cell_key): they are run again.
+std::vector<compare::SweepCell> read_units(const fs::path& cells, const std::vector<compare::Unit>& units,
+                                           const nlohmann::json& key, std::size_t& missing, std::size_t* stale = nullptr) {
+  std::vector<compare::SweepCell> out;
   missing = 0;
   for (const auto& u : units) {
     const fs::path f = cells / (u.id + ".json");
-    std::ifstream in(f);
-    if (!in) {
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(f, ec))) {
       ++missing;
       continue;
     }
-    try {
-      auto j = nlohmann::json::parse(in);
-      if (!compare::cell_is_current(j, key)) {  // other settings, another build or format: run it again
-        ++missing;
-        if (stale) ++*stale;
-        continue;
-      }
-      out.push_back(std::move(j));
-    } catch (const nlohmann::json::exception& e) {
-      throw input_error(f.string() + ": cannot parse this sweep cell: " + e.what());
+    compare::SweepCell cell = compare::parse_cell(core::read_file(f, "sweep cell"), f.string(), u.id);
+    if (!compare::cell_is_current(cell, key)) {  // other settings, another build or format: run it again
+      ++missing;
+      if (stale) ++*stale;
+      continue;
     }
+    out.push_back(std::move(cell));
   }
   return out;
 }
@@ -321,47 +327,52 @@ int run_sweep(const core::Scene& scene, const compare::SweepSpec& spec, const fs
 }
 
 int merge_sweeps(const std::vector<std::string>& dirs, const fs::path& out) {
-  nlohmann::json manifest;
+  std::optional<compare::SweepManifest> manifest;
   for (const auto& d : dirs) {
-    std::ifstream in(fs::path(d) / "sweep.json");
-    if (!in) throw input_error(d + ": not a sweep folder (no sweep.json)");
-    nlohmann::json m;
-    try {
-      m = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-      throw input_error(d + "/sweep.json: cannot parse: " + e.what());
-    }
-    if (manifest.is_null()) manifest = m;
-    else if (m != manifest)
+    const fs::path file = fs::path(d) / "sweep.json";
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(file, ec))) throw input_error(d + ": not a sweep folder (no sweep.json)");
+    compare::SweepManifest m = compare::parse_manifest(core::read_file(file, "sweep manifest"), file.string());
+    if (!manifest) manifest = std::move(m);
+    else if (m.json != manifest->json)
       throw input_error(d + ": a different sweep (scene, settings, build or units) than " + dirs.front());
   }
-  const core::Scene scene = core::load_scene(manifest.at("scene_file").get<std::string>(), limits);
-  const compare::FolderLock lock(out);
-  if (scene.sha256 != manifest.at("scene_sha256"))
-    throw input_error(manifest.at("scene_file").get<std::string>() + ": the scene changed since the sweep ran (sha256 differs)");
-  fs::create_directories(out / "cells");
-  for (const auto& d : dirs)
-    for (const auto& e : fs::directory_iterator(fs::path(d) / "cells"))
-      if (e.path().extension() == ".json") {  // whole or not at all, as every file written (kill -9 mid-copy)
-        std::ifstream in(e.path(), std::ios::binary);
-        std::stringstream text;
-        text << in.rdbuf();
-        compare::write_file_atomically(out / "cells" / e.path().filename(), text.str());
-      }
-  compare::write_file_atomically(out / "sweep.json", manifest.dump(1) + "\n");
+  const core::Scene scene = core::load_scene(manifest->scene_file, limits);
+  compare::StagedFolder folder(out);  // whole or not at all: a merge interrupted leaves the previous one
+  if (scene.sha256 != manifest->scene_sha256)
+    throw input_error(manifest->scene_file + ": the scene changed since the sweep ran (sha256 differs)");
+  const fs::path cells = folder.path() / "cells";
+  fs::create_directories(cells);
+  // Each shard's cells, read as a sweep reads them (compare/stored.hpp: a
+  // link, a device or a FIFO is refused, a cell is checked before it is copied).
+  for (const auto& d : dirs) {
+    const fs::path from = fs::path(d) / "cells";
+    std::error_code ec;
+    if (!fs::is_directory(fs::symlink_status(from, ec))) throw input_error(from.string() + ": no cells folder in this shard");
+    for (fs::directory_iterator it(from, ec), end; !ec && it != end; it.increment(ec)) {
+      const fs::path f = it->path();
+      if (f.extension() != ".json" || f.filename().string().front() == '.') continue;  // temporaries
+      const std::string text = core::read_file(f, "sweep cell");
+      (void)compare::parse_cell(text, f.string(), f.stem().string());
+      compare::write_file_atomically(cells / f.filename(), text);
+    }
+    if (ec) throw input_error(from.string() + ": cannot list the cells: " + ec.message());
+  }
+  compare::write_file_atomically(folder.path() / "sweep.json", manifest->json.dump(1) + "\n");
   // The units come from the manifest; their records carry everything else.
   std::vector<compare::Unit> units;
-  for (const auto& id : manifest.at("units")) units.push_back({id.get<std::string>(), "", "", {}});
+  for (const auto& id : manifest->units) units.push_back({id, "", "", {}});
   compare::SweepSpec spec;
-  spec.repeats = manifest.at("repeats");
-  spec.max_duration = manifest.at("max_duration");
-  spec.error = compare::measure_from_string(manifest.value("error", "default"));  // the shards' --error
-  spec.build = manifest.value("build", "");  // the shards' build, not this one's
+  spec.repeats = manifest->repeats;
+  spec.max_duration = manifest->max_duration;
+  spec.error = compare::measure_from_string(manifest->error);  // the shards' --error ("default": none)
+  spec.build = manifest->build;  // the shards' build, not this one's
   const core::Scene swept = compare::swept_scene(scene, spec);
   std::size_t missing = 0;
-  const auto done = read_units(out / "cells", units, compare::cell_key(swept, spec), missing);
+  const auto done = read_units(cells, units, compare::cell_key(swept, spec), missing);
   if (missing) throw run_error(out.string() + ": " + std::to_string(missing) + " unit(s) missing from the shards given");
-  compare::write_sweep_report(out, swept, done, spec);
+  compare::write_sweep_report(folder.path(), swept, done, spec);
+  folder.commit();
   std::cout << out.string() << "\n";
   return 0;
 }
@@ -407,7 +418,7 @@ int list_scenes(const fs::path& dir) {
   int broken = 0;
   for (const auto& f : files) {
     try {
-      const auto s = core::load_scene(f, limits);
+      const auto s = core::load_compiled(f, limits).scene;
       std::cout << f.string() << "\t" << s.name << "\t" << s.description << "\n";
     } catch (const gacompare::Error& e) {
       if (e.kind() != ErrorKind::input) throw;
@@ -459,15 +470,19 @@ int main(int argc, char** argv) {
   app.option_defaults()->always_capture_default();  // every default shown in --help
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
-  // Budgets decided at load, before any work (core/budget.hpp): raise them for a scene that needs more.
+  // Budgets decided at load, before any work (core/model/budget.hpp): raise them for a scene that needs more.
   app.add_option("--max-samples", limits.max_samples, "most output samples a scene may ask for (default 1e6)")
       ->check(CLI::PositiveNumber);
   app.add_option("--max-steps", limits.max_steps, "most solver or collision steps of one run (default 1e8)")
       ->check(CLI::PositiveNumber);
   app.add_option("--max-memory", limits.max_memory_mb, "most MB the samples of one run may take (default 4096)")
       ->check(CLI::PositiveNumber);
+  // Every file read (scenes, meshes, results, baselines, cells) is bounded (core/read_file.hpp).
+  double max_input_mb = static_cast<double>(core::kDefaultMaxInputBytes) / 1e6;
+  app.add_option("--max-input-mb", max_input_mb, "most MB one input file may hold (default 256)")
+      ->check(cli::positive_number());
   const auto backend_check = cli::one_of("backend", compare::backend_names());
-  const auto repeat_check = cli::whole_number(1);
+  const auto repeat_check = cli::whole_number(1, compare::kMaxRepeats);
 
   std::string run_scene, run_backend, run_out;
   int run_repeat = 1;
@@ -571,7 +586,8 @@ int main(int argc, char** argv) {
   std::string col_out, col_table, col_disagree;
   auto* col = app.add_subcommand("collide", "narrowphase of convex pairs: both backends, the exact SAT, FCL and Bullet");
   col->add_option("cases", col_files, "case files (JSON array of {\"a\": body, \"b\": body})")->required();
-  col->add_option("--repeat", col_options.repeat, "timed queries per method and pair, interleaved")->check(repeat_check);
+  col->add_option("--repeat", col_options.repeat, "timed queries per method and pair, interleaved")
+      ->check(cli::whole_number(1));  // not read back by diff: not held to kMaxRepeats
   col->add_option("--out", col_out, "write the JSON array here instead of stdout")->default_str("stdout");
   col->add_option("--table", col_table, "write the agreement table (markdown) here instead of stderr")->default_str("stderr");
   col->add_option("--disagreements", col_disagree, "folder for replayable case files of every disagreement")
@@ -598,6 +614,7 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  core::set_max_input_bytes(static_cast<std::uint64_t>(std::min(max_input_mb * 1e6, 1e18)));
   try {
     if (*run)
       return run_and_report(load_all({run_scene}), {run_backend}, compare::Selection::exactly, run_repeat, run_out, quiet);
@@ -629,7 +646,7 @@ int main(int argc, char** argv) {
       spec.peer = !sw_no_peer;
       if (!sw_error.empty()) spec.error = compare::measure_from_string(sw_error);
       const auto shard = parse_shard(sw_shard);
-      const core::Scene scene = core::load_scene(sw_scene, limits);
+      const core::Scene scene = core::load_compiled(sw_scene, limits).scene;
       if (spec.error && compare::body_only(*spec.error) && scene.bodies.empty())
         throw input_error("--error " + sw_error + ": the scene '" + scene.name + "' has no bodies");
       return run_sweep(scene, spec, sw_out, shard, quiet);

@@ -1,7 +1,5 @@
 #include "compare/metrics.hpp"
 
-#include "core/mass_properties.hpp"
-#include "core/mesh.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -43,15 +41,9 @@ std::optional<Measure> measure_from_string(std::string_view name) {
   return std::nullopt;
 }
 
-std::vector<double> body_radii(const core::Scene& scene) {
+std::vector<double> body_radii(const core::Model& model) {
   std::vector<double> out;
-  for (const auto& b : scene.bodies) {
-    const core::Mesh mesh = core::mesh_for(b.shape);
-    const core::Vec3 com = core::mass_properties(mesh, 1.0).centre_of_mass;
-    double r = 0;
-    for (const core::Vec3& v : mesh.vertices()) r = std::max(r, (v - com).norm());
-    out.push_back(r);
-  }
+  for (const auto& b : model.bodies) out.push_back(b.radius);
   return out;
 }
 

@@ -39,7 +39,7 @@ bool body_only(Measure m);
 // Each scene body's radius about its centre of mass: the largest distance of a
 // vertex of its mesh from it (m). A turn by θ moves no point of the body by more
 // than radius × θ.
-std::vector<double> body_radii(const core::Scene& scene);
+std::vector<double> body_radii(const core::Model& model);
 
 // One value per measure.
 struct StateErrors {

@@ -40,7 +40,7 @@ std::string quoted(const std::string& s) {
 // Runs gnuplot on `script` (its standard input) and returns what it writes on
 // standard output. No shell, no file: a scene's text never meets a command
 // line, and a run killed while plotting leaves nothing in the temporary folder
-// (issue #16: it left gacompare_plot_PID folders). gnuplot -d reads no init
+// (no gacompare_plot_PID folders left behind). gnuplot -d reads no init
 // file, so what a user's ~/.gnuplot says changes nothing either. Throws
 // run_error with gnuplot's first line on stderr when it fails, and stops it
 // after kTimeoutSeconds.

@@ -67,7 +67,7 @@ void require_referee_round(const core::Mesh& mesh) {
 
 FclShape::FclShape(const core::Mesh& mesh) : name_(mesh.name()), size_(mesh.size()) {
   if (mesh.is_round()) {
-    // FCL's own primitives, not the proxy polyhedron (core/mesh.hpp); about the
+    // FCL's own primitives, not the proxy polyhedron (core/model/mesh.hpp); about the
     // mesh's origin, where make_sphere and make_capsule put the centre.
     // fcl::Capsule(radius, lz): lz is the length between the hemispheres'
     // centres, along z (its AABB is ½ lz + radius along z), as ours.

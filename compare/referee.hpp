@@ -1,7 +1,7 @@
 #pragma once
-// The collision referees (issue #6): one convex–convex narrowphase query answered
+// The collision referees: one convex–convex narrowphase query answered
 // by two independent libraries, returned as a collision::PairContact with exactly
-// the conventions of core/collision.hpp (normal unit from a towards b; depth > 0
+// the conventions of core/collision/collision.hpp (normal unit from a towards b; depth > 0
 // the penetration depth when intersecting, depth ≤ 0 = −distance when apart;
 // contact a world point midway between the two surfaces; feature = none).
 //
@@ -37,8 +37,8 @@
 // Both shapes are built once per mesh, outside any timed per-pair loop, and are
 // immutable afterwards: copies share the library object, and concurrent queries
 // on the same shapes are safe (every query builds its own solver state).
-#include "core/collision.hpp"
-#include "core/mesh.hpp"
+#include "core/collision/collision.hpp"
+#include "core/model/mesh.hpp"
 
 #include <memory>
 #include <string>

@@ -1,5 +1,6 @@
 #include "compare/replay.hpp"
 
+#include "compare/escape.hpp"
 #include "compare/report.hpp"
 #include "compare/results.hpp"
 #include "core/error.hpp"
@@ -25,15 +26,6 @@ std::string g17(double x) {
   return buf;
 }
 
-// A CSV field: names come from other people's files, so one holding a comma,
-// a quote or a line break is quoted (RFC 4180).
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
 // Text placed inside a <script> element: "</" could close it (a scene name
 // "</script>" would), and "<\/" means the same in JSON and in JavaScript strings.
 std::string script_safe(std::string text) {
@@ -55,7 +47,7 @@ std::string read_three_js() {
 // (results.json's scene record), and per backend one flat array per frame:
 // x, y, z, qw, qx, qy, qz per body, then x, y, z per particle.
 json replay_data(const SceneResult& r, const std::vector<std::size_t>& frames) {
-  const json scene = scene_json(r.scene);
+  const json scene = scene_json(r.scene, *r.model);
   json times = json::array();
   const auto& first = r.backends.empty() ? std::vector<core::Sample>{} : r.backends.front().run.samples;
   for (const std::size_t k : frames) times.push_back(first[k].t);
@@ -367,7 +359,7 @@ std::string replay_html(const SceneResult& r) {
        "<option value=\"1\" selected>1×</option><option value=\"4\">4×</option></select></label>"
        "<label><input id=\"orbit\" type=\"checkbox\" checked> orbit</label></div>\n<div id=\"views\"></div>\n"
     << "<script>" << three << "</script>\n<script type=\"application/json\" id=\"replay-data\">"
-    << script_safe(replay_data(r, frames).dump()) << "</script>\n<script>" << kViewer << "</script>\n</body></html>\n";
+    << json_for_script(replay_data(r, frames).dump()) << "</script>\n<script>" << kViewer << "</script>\n</body></html>\n";
   return o.str();
 }
 

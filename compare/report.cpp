@@ -1,6 +1,7 @@
 #include "compare/report.hpp"
 
 #include "compare/check.hpp"
+#include "compare/escape.hpp"
 #include "compare/replay.hpp"
 #include "compare/files.hpp"
 #include "compare/results.hpp"
@@ -81,18 +82,18 @@ std::string format_seconds(double s) {
 
 std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, int repeats) {
   std::ostringstream o;
-  o << "# " << r.scene.name << "\n\n";
-  if (!r.scene.description.empty()) o << r.scene.description << "\n\n";
-  o << "Scene `" << r.scene.file.filename().string() << "` (sha256 " << r.scene.sha256.substr(0, 12) << "…), "
+  o << "# " << md_text(r.scene.name) << "\n\n";
+  if (!r.scene.description.empty()) o << md_text(r.scene.description) << "\n\n";
+  o << "Scene " << md_text(r.scene.file.filename().string()) << " (sha256 " << r.scene.sha256.substr(0, 12) << "…), "
     << r.scene.duration << " s simulated, solver `" << core::to_string(r.scene.solver.method) << "`.\n"
     << header(machine, repeats) << "\n";
 
   for (const auto& b : r.backends)
-    if (b.run.error) o << "**" << b.run.backend << " stopped early:** " << *b.run.error << "\n\n";
+    if (b.run.error) o << "**" << md_text(b.run.backend) << " stopped early:** " << md_text(*b.run.error) << "\n\n";
   // Physical sanity first: a run that breaks physics must not read as a
   // timing table with a footnote (the rules: compare/sanity.hpp).
   const std::vector<CheckLine> sanity = sanity_checks(r);
-  for (const auto& w : sanity_warnings(sanity)) o << "**WARNING, physical sanity:** " << w << "\n\n";
+  for (const auto& w : sanity_warnings(sanity)) o << "**WARNING, physical sanity:** " << md_text(w) << "\n\n";
 
   bool gaps = false, bullet = false;  // a stage one backend ran and another did not
   for (const auto& b : r.backends) bullet = bullet || b.run.backend == "bullet";
@@ -176,7 +177,7 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
     for (const auto& b : r.backends)
       for (const auto& counter : b.run.counters) names.insert(counter.first);
     for (const auto& name : names) {
-      o << "| " << name << " |";
+      o << "| " << md_text(name) << " |";
       for (const auto& b : r.backends) {
         const auto it = b.run.counters.find(name);
         o << " " << (it == b.run.counters.end() ? std::string("–") : std::to_string(it->second)) << " |";
@@ -221,7 +222,7 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
   }
   if (!sanity.empty())
     o << "\n## Physical sanity\n\nThe rules of `gacompare check` that hold for any correct frictionless contact "
-         "response (README, `check`); a failing one is the warning at the top of this report.\n\n"
+         "response (docs/using-gacompare.md, \"Physical sanity\"); a failing one is the warning at the top of this report.\n\n"
       << check_table(sanity);
   if (r.backends.size() > 1) {
     o << "\nLargest distance between the traditional and cga positions over all samples: "
@@ -242,7 +243,7 @@ std::string stage_csv(const std::vector<SceneResult>& results) {
         const auto s = static_cast<Stage>(k);
         if (!b.run.profile.ran(s)) continue;
         const Spread sp = spread(stage_seconds(b, s));
-        o << r.scene.name << "," << b.run.backend << "," << core::stage_name(s) << "," << fmt("%.9g", sp.median) << ","
+        o << csv_field(r.scene.name) << "," << csv_field(b.run.backend) << "," << core::stage_name(s) << "," << fmt("%.9g", sp.median) << ","
           << fmt("%.9g", sp.min) << "," << fmt("%.9g", sp.max) << "," << b.run.profile[s].calls << "\n";
       }
   return o.str();
@@ -293,7 +294,7 @@ void category_tables(std::ostringstream& o, const std::vector<SceneSummary>& sce
 
   for (const auto& s : scenes) {
     if (s.trajectories != Trajectories::parted) continue;
-    o << "\n## " << s.name << ": parted, compared per unit of work\n\n"
+    o << "\n## " << md_text(s.name) << ": parted, compared per unit of work\n\n"
       << "The backends' positions moved " << fmt("%.2g", s.divergence) << " m apart, beyond the scene's "
       << s.tolerance.source << " (" << fmt("%.2g", s.tolerance.metres)
       << " m): they no longer follow one trajectory (chaos amplifies the backends' different rounding), so they "
@@ -326,7 +327,7 @@ void verdict(std::ostringstream& o, const std::vector<SceneSummary>& scenes) {
     if (a.scenes == 0) continue;
     std::string parted;
     for (const auto& s : scenes)
-      if (s.category == c && s.trajectories == Trajectories::parted) parted += (parted.empty() ? "" : ", ") + s.name;
+      if (s.category == c && s.trajectories == Trajectories::parted) parted += (parted.empty() ? "" : ", ") + md_text(s.name);
     (is_evidence(c) ? evidence : shared)
         .push_back(std::string(to_string(c)) + " (" + std::to_string(a.scenes) + " scene" + (a.scenes == 1 ? "" : "s") +
                    (parted.empty() ? "" : "; " + parted + " per unit of work") + "): " + to_string(a.verdict) +
@@ -347,9 +348,9 @@ void verdict(std::ostringstream& o, const std::vector<SceneSummary>& scenes) {
       ++agree;
       if (!closest || s.tolerance_used > closest->tolerance_used) closest = &s;
     }
-    if (s.trajectories == Trajectories::parted) parted.push_back(s.name);
+    if (s.trajectories == Trajectories::parted) parted.push_back(md_text(s.name));
     if (s.trajectories == Trajectories::own_settings) ++own;
-    if (s.trajectories == Trajectories::not_compared) not_compared.push_back(s.name + " (" + s.not_compared_why + ")");
+    if (s.trajectories == Trajectories::not_compared) not_compared.push_back(md_text(s.name + " (" + s.not_compared_why + ")"));
   }
   if (own)
     o << "Each backend ran at its own setting, the one reaching the same accuracy (`--accuracy`), on " << own << " of "
@@ -357,7 +358,7 @@ void verdict(std::ostringstream& o, const std::vector<SceneSummary>& scenes) {
   if (own < static_cast<int>(scenes.size())) {
     o << "Trajectories: identical at every sample on " << identical << " of " << scenes.size() << " scenes";
     if (agree)
-      o << ", within the scene's own tolerance on " << agree << " (nearest it: " << closest->name << ", "
+      o << ", within the scene's own tolerance on " << agree << " (nearest it: " << md_text(closest->name) << ", "
         << fmt("%.2g", 100 * closest->tolerance_used) << "% of " << fmt("%.0e", closest->tolerance.metres) << " m)";
     const auto list = [](const std::vector<std::string>& v) {
       std::string out;
@@ -387,7 +388,7 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
     const BackendResult* trad = find(r, "traditional");
     const BackendResult* cga = find(r, "cga");
     const bool compared = s.trajectories != Trajectories::not_compared;
-    o << "| [" << r.scene.name << "](" << file_name_for(r.scene.name) << "/report.md) | " << to_string(s.category) << " | "
+    o << "| [" << md_text(r.scene.name) << "](" << file_name_for(r.scene.name) << "/report.md) | " << to_string(s.category) << " | "
       << (trad ? time_cell(total_seconds(*trad)) : "–") << " | " << (cga ? time_cell(total_seconds(*cga)) : "–")
       << " | "
       << (!compared ? "–"
@@ -414,7 +415,7 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
   // nobody reading the summary can miss it.
   std::vector<std::string> warnings;
   for (const auto& r : results)
-    for (const auto& w : sanity_warnings(sanity_checks(r))) warnings.push_back(r.scene.name + ": " + w);
+    for (const auto& w : sanity_warnings(sanity_checks(r))) warnings.push_back(md_text(r.scene.name + ": " + w));
   for (const auto& w : warnings) o << "\n**WARNING, physical sanity:** " << w << "\n";
 
   category_tables(o, scenes, repeats);

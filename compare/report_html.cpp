@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 namespace gacompare::compare {
@@ -27,9 +28,32 @@ std::string html_escape(const std::string& s) {
 
 namespace {
 
-// The inline markdown report.md uses: `code`, **bold**, [text](link).
+// What compare/escape.hpp's md_text wrote, read back: \| and \\ as the
+// characters, &lt; &gt; &amp; as <, > and &, in one pass (so "&amp;lt;" stays "&lt;").
+std::string md_unescape(const std::string& text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\\' && i + 1 < text.size() && (text[i + 1] == '|' || text[i + 1] == '\\')) {
+      out += text[++i];
+      continue;
+    }
+    bool entity = false;
+    for (const auto& [name, c] : {std::pair{"&lt;", '<'}, std::pair{"&gt;", '>'}, std::pair{"&amp;", '&'}})
+      if (!entity && text.compare(i, std::strlen(name), name) == 0) {
+        out += c;
+        i += std::strlen(name) - 1;
+        entity = true;
+      }
+    if (!entity) out += text[i];
+  }
+  return out;
+}
+
+// The inline markdown report.md uses: `code`, **bold**, [text](link). Text is
+// escaped for HTML after md_text's escapes are read back, so markup in a name
+// stays text.
 std::string inline_md(const std::string& text) {
-  const std::string s = html_escape(text);
+  const std::string s = html_escape(md_unescape(text));
   std::string out;
   for (std::size_t i = 0; i < s.size();) {
     if (s[i] == '`') {
@@ -55,7 +79,7 @@ std::string inline_md(const std::string& text) {
         std::string href = s.substr(close + 2, end - close - 2);
         if (href.size() > 3 && href.compare(href.size() - 3, 3, ".md") == 0) href.replace(href.size() - 3, 3, ".html");
         // Links are to the report's own files: a scheme (javascript:, a URL a
-        // scene's name or description smuggled in) stays text (issue #16).
+        // scene's name or description smuggled in) stays text.
         if (href.find(':') != std::string::npos) {
           out += s[i++];
           continue;
@@ -70,11 +94,15 @@ std::string inline_md(const std::string& text) {
   return out;
 }
 
+// A table row's cells, split at each '|' that md_text did not escape.
 std::vector<std::string> cells(const std::string& row) {
   std::vector<std::string> out;
   std::string cur;
   for (std::size_t i = 1; i < row.size(); ++i) {
-    if (row[i] == '|') {
+    if (row[i] == '\\' && i + 1 < row.size()) {
+      cur += row[i];
+      cur += row[++i];
+    } else if (row[i] == '|') {
       out.push_back(cur);
       cur.clear();
     } else {

@@ -1,8 +1,7 @@
 #include "compare/results.hpp"
 
 #include "compare/stats.hpp"
-#include "core/mass_properties.hpp"
-#include "core/mesh.hpp"
+#include "core/model/model.hpp"
 
 #include <cmath>
 
@@ -39,17 +38,15 @@ json sample_json(const core::Scene& scene, const core::Sample& s) {
 // mesh in body coordinates (about its centre of mass, as its samples' position
 // and orientation place it: world = R(q) v + x), its radius and whether it is
 // static; the particles in sample order; the constraints with their geometry.
-json bodies_json(const core::Scene& scene) {
+json bodies_json(const core::Scene& scene, const core::Model& model) {
   json bodies = json::array();
-  const std::vector<double> radii = body_radii(scene);
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const core::Body& b = scene.bodies[i];
-    const core::Mesh mesh = core::mesh_for(b.shape);
-    const core::Vec3 com = core::mass_properties(mesh, 1.0).centre_of_mass;
+    const core::Mesh& mesh = *model.bodies[i].mesh;  // about the centre of mass
     json vertices = json::array(), triangles = json::array();
-    for (const core::Vec3& v : mesh.vertices()) vertices.push_back(vec(core::Vec3(v - com)));
+    for (const core::Vec3& v : mesh.vertices()) vertices.push_back(vec(v));
     for (const auto& t : mesh.triangles()) triangles.push_back({t[0], t[1], t[2]});
-    bodies.push_back({{"name", b.name}, {"static", b.is_static}, {"radius", radii[i]}, {"vertices", vertices},
+    bodies.push_back({{"name", b.name}, {"static", b.is_static}, {"radius", model.bodies[i].radius}, {"vertices", vertices},
                       {"triangles", triangles}});
   }
   return bodies;
@@ -120,7 +117,7 @@ json run_json(const core::Scene& scene, const BackendResult& b) {
 }
 }  // namespace
 
-nlohmann::ordered_json scene_json(const core::Scene& scene) {
+nlohmann::ordered_json scene_json(const core::Scene& scene, const core::Model& model) {
   json particles = json::array();
   for (const auto& p : scene.particles) particles.push_back(p.name);
   return {{"name", scene.name},
@@ -131,7 +128,7 @@ nlohmann::ordered_json scene_json(const core::Scene& scene) {
           {"output_every", scene.output_every},
           {"check", {{"max_divergence", scene.check.max_divergence}, {"baseline_tolerance", scene.check.baseline_tolerance}}},
           {"particles", particles},
-          {"bodies", bodies_json(scene)},
+          {"bodies", bodies_json(scene, model)},
           {"constraints", constraints_json(scene)}};
 }
 
@@ -152,7 +149,7 @@ nlohmann::ordered_json results_json(const SceneResult& r, const MachineInfo& mac
   json runs = json::array();
   for (const auto& b : r.backends) runs.push_back(run_json(r.scene, b));
   return {{"tool", {{"name", "gacompare"}, {"version", tool_version()}}},
-          {"scene", scene_json(r.scene)},
+          {"scene", scene_json(r.scene, *r.model)},
           {"machine", machine_json(machine)},
           {"repeats", repeats},
           {"runs", runs},

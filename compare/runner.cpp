@@ -3,8 +3,8 @@
 #include "cga/backend.hpp"
 #include "compare/bullet_world.hpp"
 #include "core/error.hpp"
-#include "core/generators.hpp"
-#include "core/simulator.hpp"
+#include "core/model/generators.hpp"
+#include "core/dynamics/simulator.hpp"
 #include "traditional/backend.hpp"
 
 #include <algorithm>
@@ -17,17 +17,34 @@ const std::vector<std::string>& backend_names() {
   return names;
 }
 
-core::Run run_backend(const core::Scene& scene, std::string_view backend) {
-  if (backend == traditional::Backend::name) return core::simulate<traditional::Backend>(scene);
-  if (backend == cga::Backend::name) return core::simulate<cga::Backend>(scene);
-  if (backend == "bullet") return simulate_bullet(scene);  // throws input_error where Bullet cannot run it
+namespace {
+// The scene's model for runs given none; an error names the scene's file and
+// body as the simulator's own (core::located).
+std::shared_ptr<const core::Model> compiled(const core::Scene& scene) {
+  try {
+    return std::make_shared<const core::Model>(core::compile(scene));
+  } catch (const Error& e) {
+    throw core::located(scene, e);
+  }
+}
+
+}  // namespace
+
+core::Run run_backend(const core::Scene& scene, std::shared_ptr<const core::Model> model, std::string_view backend) {
+  if (backend == traditional::Backend::name) return core::simulate<traditional::Backend>(scene, std::move(model));
+  if (backend == cga::Backend::name) return core::simulate<cga::Backend>(scene, std::move(model));
+  if (backend == "bullet") return simulate_bullet(scene, *model);  // throws input_error where Bullet cannot run it
   throw input_error("unknown backend '" + std::string(backend) + "' (expected traditional, cga or bullet)");
+}
+
+core::Run run_backend(const core::Scene& scene, std::string_view backend) {
+  return run_backend(scene, compiled(scene), backend);
 }
 
 namespace {
 // Bit for bit: every particle's position and velocity and every body's
-// position, orientation, velocity and angular velocity (issue #13: bodies were
-// left out, so a rigid scene was always "deterministic").
+// position, orientation, velocity and angular velocity (leaving bodies out would
+// call every rigid scene "deterministic").
 bool same_state(const core::Sample& a, const core::Sample& b) {
   if (a.t != b.t || a.particles.size() != b.particles.size() || a.bodies.size() != b.bodies.size()) return false;
   for (std::size_t i = 0; i < a.particles.size(); ++i)
@@ -44,29 +61,38 @@ bool same_state(const core::Sample& a, const core::Sample& b) {
 }  // namespace
 
 std::vector<std::string> backends_for(const core::Scene& scene, const std::vector<std::string>& requested,
-                                      Selection selection) {
+                                      Selection selection, const core::Model* model) {
+  const auto unsupported = [&] { return model ? bullet_unsupported(scene, model) : bullet_unsupported(scene); };
   if (selection == Selection::exactly) {
     // Asked for by name: refuse before anything runs, not after the other backends.
     if (std::find(requested.begin(), requested.end(), "bullet") != requested.end())
-      if (const std::string why = bullet_unsupported(scene); !why.empty())
+      if (const std::string why = unsupported(); !why.empty())
         throw input_error(scene.file.string() + ": bullet: " + why);
     return requested;
   }
   std::vector<std::string> out;
   for (const auto& b : requested)
-    if (b != "bullet" || (scene.find_effect<core::Collisions>() && bullet_unsupported(scene).empty())) out.push_back(b);
+    if (b != "bullet" || (scene.find_effect<core::Collisions>() && unsupported().empty())) out.push_back(b);
   return out;
 }
 
 SceneResult compare_scene(const core::Scene& written, const std::vector<std::string>& requested, int repeats,
                           Selection selection, const Progress& progress) {
+  return compare_scene(written, nullptr, requested, repeats, selection, progress);
+}
+
+SceneResult compare_scene(const core::Scene& written, std::shared_ptr<const core::Model> model,
+                          const std::vector<std::string>& requested, int repeats, Selection selection,
+                          const Progress& progress) {
   const core::Scene scene = core::expand_generators(written);
-  const std::vector<std::string> backends = backends_for(scene, requested, selection);
-  SceneResult result{scene, std::vector<BackendResult>(backends.size())};
+  const std::vector<std::string> backends = backends_for(scene, requested, selection, model.get());
+  // Generators add particles only: a model compiled from the written scene is the expanded one's.
+  if (!model) model = compiled(scene);
+  SceneResult result{scene, std::vector<BackendResult>(backends.size()), model};
   for (int r = 0; r < repeats; ++r) {
     for (std::size_t k = 0; k < backends.size(); ++k) {
       const std::size_t b = (r % 2 == 0) ? k : backends.size() - 1 - k;
-      core::Run run = run_backend(scene, backends[b]);
+      core::Run run = run_backend(scene, model, backends[b]);
       auto& br = result.backends[b];
       br.profiles.push_back(run.profile);
       br.wall_seconds.push_back(run.wall_seconds);

@@ -1,10 +1,12 @@
 #pragma once
 // Runs scenes through the backends: one run, or a comparison with repeats
 // interleaved so that the machine's drift hits every backend alike.
+#include "core/model/model.hpp"
+#include "core/model/scene.hpp"
 #include "core/run.hpp"
-#include "core/scene.hpp"
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,11 +31,16 @@ enum class Selection {
 };
 
 // The backends compare_scene runs for `requested`, read as `selection` says.
+// With the scene's compiled model where there is one (bullet_unsupported reads it).
 std::vector<std::string> backends_for(const core::Scene& scene, const std::vector<std::string>& requested,
-                                      Selection selection = Selection::where_supported);
+                                      Selection selection = Selection::where_supported,
+                                      const core::Model* model = nullptr);
 
-// One simulation through the named backend; the scene's generators must be expanded. Throws input_error for an unknown
-// backend or a scene the backend cannot simulate.
+// One simulation through the named backend, reading the scene's compiled
+// model; the scene's generators must be expanded. Throws input_error for an
+// unknown backend or a scene the backend cannot simulate. Without a model, it
+// compiles one for this run.
+core::Run run_backend(const core::Scene& scene, std::shared_ptr<const core::Model> model, std::string_view backend);
 core::Run run_backend(const core::Scene& scene, std::string_view backend);
 
 // All repeats of one backend on one scene. The samples kept are the first
@@ -48,6 +55,7 @@ struct BackendResult {
 struct SceneResult {
   core::Scene scene;  // with its generators expanded: particles match the samples
   std::vector<BackendResult> backends;  // in the order of backends_for(scene, requested, selection)
+  std::shared_ptr<const core::Model> model;  // compiled once; every backend's run read it
 };
 
 // Called after each round of repeats (every backend once), with the round
@@ -58,6 +66,10 @@ using Progress = std::function<void(int round, int rounds, const SceneResult& so
 // Runs every backend of backends_for(scene, requested, selection) `repeats`
 // times, alternating which goes first in each round (ABBA…) so none always runs
 // on a warm or a cold machine.
+// `model` is the scene's compiled model (core::load_compiled), compiled here when absent.
+SceneResult compare_scene(const core::Scene& scene, std::shared_ptr<const core::Model> model,
+                          const std::vector<std::string>& requested, int repeats,
+                          Selection selection = Selection::where_supported, const Progress& progress = {});
 SceneResult compare_scene(const core::Scene& scene, const std::vector<std::string>& requested, int repeats,
                           Selection selection = Selection::where_supported, const Progress& progress = {});
 

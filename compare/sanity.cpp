@@ -2,10 +2,8 @@
 // what each rule is; this file says why each bound is what it is).
 #include "compare/sanity.hpp"
 
-#include "core/mass_properties.hpp"
-#include "core/mesh.hpp"
-#include "core/rigid_body.hpp"
-#include "core/separating_axis.hpp"
+#include "core/model/model.hpp"
+#include "core/collision/separating_axis.hpp"
 
 #include <Eigen/Geometry>
 
@@ -27,45 +25,37 @@ std::string num(double x) {
   return buf;
 }
 
-// What the rules need to know about a scene, read once.
-struct World {
+// What the rules need to know about a scene, read once from it and its model.
+struct SceneFacts {
   const core::Collisions* collisions = nullptr;
   double g = 0;             // |g|
   Vec3 down = Vec3::Zero(); // ĝ; zero without gravity
   double tol = 0, v_rest = 0;
-  // The meshes as the collider builds them (core/collisions.cpp): the shape's
-  // mesh moved so that its centre of mass is the origin, so that a sample's
-  // position and orientation place it.
-  std::vector<core::Mesh> meshes;
+  // The compiled model's meshes (about each centre of mass, so that a
+  // sample's position and orientation place them), masses and radii.
+  std::vector<std::shared_ptr<const core::Mesh>> meshes;
   std::vector<double> mass, radius;  // radius: of the sphere about the centre of mass holding the mesh
   std::vector<bool> is_static;
-  const core::Scene* scene = nullptr;
+  const core::BodyEffects* effects = nullptr;
 };
 
-World world_of(const core::Scene& scene) {
-  World w;
-  w.scene = &scene;
+SceneFacts facts_of(const core::Scene& scene, const core::Model& model) {
+  SceneFacts w;
   w.collisions = scene.find_effect<core::Collisions>();
+  w.effects = &model.effects;
   if (!w.collisions) return w;
   if (const auto* g = scene.find_effect<core::Gravity>(); g && g->g.norm() > 0) {
     w.g = g->g.norm();
     w.down = g->g / w.g;
   }
   w.tol = w.collisions->penetration_tolerance;
-  // The collider's resting speed (core/collisions.hpp): a contact approaching
-  // slower than a fall through the tolerance plus two steps of gravity is at rest.
-  w.v_rest = std::sqrt(2 * w.g * w.tol) + 2 * w.g * w.collisions->step;
-  const auto props = core::body_properties(scene);
+  w.v_rest = model.resting_speed;  // the collider's: a contact approaching slower is at rest
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    core::Mesh mesh = core::mesh_for(scene.bodies[i].shape);
-    const Vec3 com = core::mass_properties(mesh, 1.0).centre_of_mass;
-    mesh = mesh.transformed(Mat3::Identity(), -com);
-    double r = 0;
-    for (const Vec3& v : mesh.vertices()) r = std::max(r, v.norm());
-    w.meshes.push_back(std::move(mesh));
-    w.mass.push_back(props[i].mass);
-    w.radius.push_back(r);
-    w.is_static.push_back(scene.bodies[i].is_static);
+    const core::BodyModel& b = model.bodies[i];
+    w.meshes.push_back(b.mesh);
+    w.mass.push_back(b.mass);
+    w.radius.push_back(b.radius);
+    w.is_static.push_back(b.is_static);
   }
   return w;
 }
@@ -78,7 +68,7 @@ struct Posed {
   std::vector<core::Plane> planes;
 };
 
-std::vector<Posed> pose_all(const World& w, const core::Sample& s) {
+std::vector<Posed> pose_all(const SceneFacts& w, const core::Sample& s) {
   std::vector<Posed> out(s.bodies.size());
   for (std::size_t i = 0; i < s.bodies.size() && i < w.meshes.size(); ++i) {
     Posed& p = out[i];
@@ -87,8 +77,8 @@ std::vector<Posed> pose_all(const World& w, const core::Sample& s) {
     // reported elsewhere; the geometry is judged on the rotation it stands for.
     p.r = core::rotation_matrix(q);
     p.c = s.bodies[i].position;
-    for (const Vec3& x : w.meshes[i].vertices()) p.v.push_back(p.r * x + p.c);
-    for (const auto& pl : w.meshes[i].planes()) {
+    for (const Vec3& x : w.meshes[i]->vertices()) p.v.push_back(p.r * x + p.c);
+    for (const auto& pl : w.meshes[i]->planes()) {
       const Vec3 n = p.r * pl.normal;
       p.planes.push_back({n, n.dot(p.c) + pl.offset});
     }
@@ -113,11 +103,11 @@ double face_gap(const Posed& a, const Posed& b) {
   return best;
 }
 
-bool spheres_apart(const World& w, const Posed& a, std::size_t ia, const Posed& b, std::size_t ib, double by) {
+bool spheres_apart(const SceneFacts& w, const Posed& a, std::size_t ia, const Posed& b, std::size_t ib, double by) {
   return (a.c - b.c).norm() - w.radius[ia] - w.radius[ib] >= by;
 }
 
-bool applies(const World& w, const core::Run& run) { return w.collisions && !run.error && !run.samples.empty(); }
+bool applies(const SceneFacts& w, const core::Run& run) { return w.collisions && !run.error && !run.samples.empty(); }
 
 CheckLine line(const core::Scene& scene, const core::Run& run, const std::string& what, double value, double bound,
                bool ok, std::string note) {
@@ -134,7 +124,7 @@ CheckLine info(const core::Scene& scene, const core::Run& run, const std::string
 // one more than the highest level among the lower dynamic bodies it touches
 // (within the tolerance along every face axis). Positional correction may lift
 // a body by one tolerance above what it rests on, which may itself be lifted.
-std::vector<int> stack_levels(const World& w, const std::vector<Posed>& posed) {
+std::vector<int> stack_levels(const SceneFacts& w, const std::vector<Posed>& posed) {
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < posed.size(); ++i)
     if (!w.is_static[i]) order.push_back(i);
@@ -154,7 +144,7 @@ std::vector<int> stack_levels(const World& w, const std::vector<Posed>& posed) {
   return level;
 }
 
-CheckLine energy(const World& w, const core::Scene& scene, const core::Run& run) {
+CheckLine energy(const SceneFacts& w, const core::Scene& scene, const core::Run& run) {
   const std::string what = "sanity: energy rise (J)";
   double max_eps = w.collisions->restitution;
   for (const auto& b : scene.bodies)
@@ -204,7 +194,7 @@ CheckLine energy(const World& w, const core::Scene& scene, const core::Run& run)
 
 // ---- rule 2: passing through a static body --------------------------------------
 
-CheckLine penetration(const World& w, const core::Scene& scene, const core::Run& run) {
+CheckLine penetration(const SceneFacts& w, const core::Scene& scene, const core::Run& run) {
   const std::string what = "sanity: penetration into a static body (m)";
   if (std::none_of(w.is_static.begin(), w.is_static.end(), [](bool s) { return s; }))
     return info(scene, run, what, "not checked: no static bodies");
@@ -214,7 +204,7 @@ CheckLine penetration(const World& w, const core::Scene& scene, const core::Run&
   // A backend with no time of impact (Bullet: it reports its fixed step) sees a
   // contact only after the step that made it, so its bound adds one step's
   // travel at the body's highest speed: that is its method, not a body passing
-  // through (README, "Bullet as a whole-simulation reference").
+  // through (docs/collision-response.md, "Bullet as a whole-simulation reference").
   const auto fixed = run.metrics.find("bullet_fixed_step_s");
   const double step = fixed == run.metrics.end() ? 0.0 : fixed->second;
   std::vector<double> bound(w.mass.size(), kSanityDeepPenetration * w.tol);
@@ -239,13 +229,13 @@ CheckLine penetration(const World& w, const core::Scene& scene, const core::Run&
         // −face_gap bounds a polyhedron's depth from above: the exact (slow)
         // depth is needed only where it could come closest to the bound so
         // far. Not a round body's: its proxy polyhedron is inscribed
-        // (core/mesh.hpp), and the surface between the proxy's vertices
+        // (core/model/mesh.hpp), and the surface between the proxy's vertices
         // reaches further (up to 11 % of the radius for a sphere); its exact
         // depth is always taken.
-        const bool round = w.meshes[i].is_round() || w.meshes[j].is_round();
+        const bool round = w.meshes[i]->is_round() || w.meshes[j]->is_round();
         const double upper = round ? kInf : -face_gap(posed[j], posed[i]);
         if (!centre_in && !(upper > 0 && upper - bound[i] > margin)) continue;
-        const collision::Placed a{&w.meshes[j], {posed[j].r, posed[j].c}}, b{&w.meshes[i], {posed[i].r, posed[i].c}};
+        const collision::Placed a{w.meshes[j].get(), {posed[j].r, posed[j].c}}, b{w.meshes[i].get(), {posed[i].r, posed[i].c}};
         double depth = collision::sat_reference(a, b).depth;
         if (depth < 0) depth = 0;  // apart along an edge × edge axis the faces missed: no penetration
         if (depth - bound[i] > margin || std::isnan(depth))
@@ -270,12 +260,12 @@ CheckLine penetration(const World& w, const core::Scene& scene, const core::Run&
 
 // ---- rule 3: sideways drift at rest (sanity.hpp states the rule) --------------
 
-Vec3 lateral(const World& w, const Vec3& x) { return x - x.dot(w.down) * w.down; }
+Vec3 lateral(const SceneFacts& w, const Vec3& x) { return x - x.dot(w.down) * w.down; }
 
 // Whether a level face of `f` has `o` on its outer side (to within `band`) with
 // o's lowest points over the face at least `margin` inside its edges: then every
 // contact between the two is on that face, and its normal is vertical.
-bool across_level_face(const World& w, const Posed& f, const Posed& o, double band, double margin) {
+bool across_level_face(const SceneFacts& w, const Posed& f, const Posed& o, double band, double margin) {
   for (std::size_t k = 0; k < f.planes.size(); ++k) {
     const auto& p = f.planes[k];
     if (p.normal.cross(w.down).norm() > kSanityLevel) continue;
@@ -300,7 +290,7 @@ struct Stretch {  // a run of checked intervals of one body
   double dv = 0, drift = 0;
 };
 
-std::vector<CheckLine> lateral_drift(const World& w, const core::Scene& scene, const core::Run& run) {
+std::vector<CheckLine> lateral_drift(const SceneFacts& w, const core::Scene& scene, const core::Run& run) {
   const std::string what_v = "sanity: lateral velocity change at rest (m/s per s)";
   const std::string what_x = "sanity: lateral drift at rest (m)";
   const auto both = [&](const std::string& why) {
@@ -311,7 +301,7 @@ std::vector<CheckLine> lateral_drift(const World& w, const core::Scene& scene, c
   const auto* quadratic = scene.find_effect<core::QuadraticDrag>();
   if ((linear && linear->k > 0) || (quadratic && quadratic->k > 0))
     return both("not checked: drag slows a sliding body sideways");
-  const core::BodyEffects fx = core::body_effects(scene);
+  const core::BodyEffects& fx = *w.effects;
   const double band = kSanityDeepPenetration * w.tol;
 
   const std::size_t n = run.samples.front().bodies.size(), count = run.samples.size();
@@ -412,42 +402,116 @@ CheckLine unresolved(const core::Scene& scene, const core::Run& run) {
                                     " contact point(s) still approaching faster than the resting speed after the response");
 }
 
+// Rule 5: a body at rest does not keep speeding up. Over every second in
+// which a body stays slower than the resting speed (rim speed |v| + ρ|ω|), its
+// rim speed at four samples a third of that second apart must not rise at each
+// of them and by more than kSanityRestingSpeedRise in all. A resting stack
+// whose solve leaves a tilt slides apart with a steady acceleration (a column
+// of 20 cubes' top cube: 3.6e-4 m/s at 0.5 s, 3.4e-3 m/s at 4 s) while every
+// other rule holds; a body nudged by a neighbour speeds up once, not for a
+// second on end; one on a slope steeper than ~0.4° passes the resting speed
+// within the second.
+CheckLine resting_acceleration(const SceneFacts& w, const core::Scene& scene, const core::Run& run) {
+  const std::string what = "sanity: speed-up at rest over 1 s (m/s)";
+  if (w.g == 0) return info(scene, run, what, "not checked: no gravity, so nothing rests");
+  const auto& samples = run.samples;
+  const auto rim_speed = [&](std::size_t k, std::size_t b) {
+    const auto& x = samples[k].bodies[b];
+    return x.velocity.norm() + w.radius[b] * x.angular_velocity.norm();
+  };
+  // Only while the whole scene rests: a body struck by a moving neighbour, or
+  // nudged by one tipping off a pile, speeds up rightly.
+  std::vector<char> all_rest(samples.size(), 1);
+  for (std::size_t k = 0; k < samples.size(); ++k)
+    for (std::size_t b = 0; b < scene.bodies.size() && all_rest[k]; ++b)
+      if (!w.is_static[b] && !(rim_speed(k, b) < w.v_rest)) all_rest[k] = 0;
+  double worst = 0;
+  std::string where;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    if (w.is_static[b]) continue;
+    std::vector<double> speed(samples.size());
+    for (std::size_t k = 0; k < samples.size(); ++k) speed[k] = rim_speed(k, b);
+    std::size_t start = 0;  // the first sample of the current resting stretch
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      if (!all_rest[k]) {
+        start = k + 1;
+        continue;
+      }
+      const double t = samples[k].t;
+      if (t - samples[start].t < 1.0) continue;
+      // The samples nearest t − 1, t − 2/3 and t − 1/3 s (all in the stretch).
+      std::size_t at[4] = {k, k, k, k};
+      for (int q = 1; q <= 3; ++q) {
+        const double want = t - q / 3.0;
+        std::size_t j = k;
+        while (j > start && samples[j].t > want) --j;
+        at[q] = j;
+      }
+      const bool rising = speed[at[3]] < speed[at[2]] && speed[at[2]] < speed[at[1]] && speed[at[1]] < speed[at[0]];
+      const double rise = speed[at[0]] - speed[at[3]];
+      if (rising && rise > worst) {
+        worst = rise;
+        where = scene.bodies[b].name + " from " + num(speed[at[3]]) + " m/s at t = " + num(samples[at[3]].t) + " s to " +
+                num(speed[at[0]]) + " m/s at t = " + num(t) + " s";
+      }
+    }
+  }
+  const bool ok = worst <= kSanityRestingSpeedRise;
+  return line(scene, run, what, worst, kSanityRestingSpeedRise, ok,
+              ok ? "" : "body " + where + ", every body slower than the resting speed throughout");
+}
+
 }  // namespace
 
 CheckLine energy_rise_check(const core::Scene& scene, const core::Run& run) {
-  const World w = world_of(scene);
+  const core::Model model = core::compile(scene);
+  const SceneFacts w = facts_of(scene, model);
   if (!applies(w, run)) return info(scene, run, "sanity: energy rise (J)", "not checked: no collisions or no samples");
   return energy(w, scene, run);
 }
 
 CheckLine penetration_check(const core::Scene& scene, const core::Run& run) {
-  const World w = world_of(scene);
+  const core::Model model = core::compile(scene);
+  const SceneFacts w = facts_of(scene, model);
   if (!applies(w, run))
     return info(scene, run, "sanity: penetration into a static body (m)", "not checked: no collisions or no samples");
   return penetration(w, scene, run);
 }
 
 std::vector<CheckLine> lateral_drift_checks(const core::Scene& scene, const core::Run& run) {
-  const World w = world_of(scene);
+  const core::Model model = core::compile(scene);
+  const SceneFacts w = facts_of(scene, model);
   if (!applies(w, run)) return {};
   return lateral_drift(w, scene, run);
 }
 
 CheckLine unresolved_impacts_check(const core::Scene& scene, const core::Run& run) { return unresolved(scene, run); }
 
-std::vector<CheckLine> sanity_checks(const core::Scene& scene, const core::Run& run) {
-  const World w = world_of(scene);
+CheckLine resting_acceleration_check(const core::Scene& scene, const core::Run& run) {
+  const core::Model model = core::compile(scene);
+  const SceneFacts w = facts_of(scene, model);
+  if (!applies(w, run)) return info(scene, run, "sanity: speed-up at rest over 1 s (m/s)", "not checked: no collisions or no samples");
+  return resting_acceleration(w, scene, run);
+}
+
+std::vector<CheckLine> sanity_checks(const core::Scene& scene, const core::Model& model, const core::Run& run) {
+  const SceneFacts w = facts_of(scene, model);
   if (!applies(w, run)) return {};
   std::vector<CheckLine> out{energy(w, scene, run), penetration(w, scene, run)};
   for (auto& l : lateral_drift(w, scene, run)) out.push_back(std::move(l));
   out.push_back(unresolved(scene, run));
+  out.push_back(resting_acceleration(w, scene, run));
   return out;
+}
+
+std::vector<CheckLine> sanity_checks(const core::Scene& scene, const core::Run& run) {
+  return sanity_checks(scene, core::compile(scene), run);
 }
 
 std::vector<CheckLine> sanity_checks(const SceneResult& r) {
   std::vector<CheckLine> out;
   for (const auto& b : r.backends) {
-    auto lines = sanity_checks(r.scene, b.run);
+    auto lines = sanity_checks(r.scene, *r.model, b.run);
     out.insert(out.end(), lines.begin(), lines.end());
   }
   return out;

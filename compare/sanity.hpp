@@ -1,5 +1,5 @@
 #pragma once
-// Physical sanity of a collision run (issue #12, item 5): four rules that hold
+// Physical sanity of a collision run: four rules that hold
 // for any correct frictionless contact response, checked on the samples a run
 // wrote, whatever backend wrote them (traditional, cga, bullet). `check` fails
 // on them (exit 1); `compare` prints them as warnings in report.md / report.html.
@@ -41,12 +41,15 @@ inline constexpr double kSanityLateralAcceleration = 1e-6; // m/s per s of rest 
 inline constexpr double kSanityLateralDrift = 1e-6;        // m
 inline constexpr double kSanityLevel = 1e-8;               // sin of the tilt below which a face counts as level
 inline constexpr int kSanityRestWindow = 3;                // samples in a row at rest vertically
+inline constexpr double kSanityRestingSpeedRise = 1e-4;     // m/s over a second of rest, rising throughout
 
 // The four rules for one run of `scene` (generators expanded, as
 // SceneResult::scene); empty unless the scene lists `collisions` and the run
 // has samples and no error. One CheckLine per rule (two for rule 3: velocity
 // and displacement), `what` starting with "sanity:"; a rule that does not
 // apply to the scene is an info line saying why.
+std::vector<CheckLine> sanity_checks(const core::Scene& scene, const core::Model& model, const core::Run& run);
+// The same, compiling the scene's model (tests, runs built by hand).
 std::vector<CheckLine> sanity_checks(const core::Scene& scene, const core::Run& run);
 // Every run of a comparison, in backend order.
 std::vector<CheckLine> sanity_checks(const SceneResult& r);
@@ -73,7 +76,7 @@ CheckLine penetration_check(const core::Scene& scene, const core::Run& run);
 //     the normal is ambiguous). Other bodies further than the reach are
 //     proved far by a face axis of the pair;
 //   - and no body within that reach has friction with it (a pair's
-//     √(μ_a μ_b) > 0, issue #17): friction pushes sideways by design.
+//     √(μ_a μ_b) > 0): friction pushes sideways by design.
 // Over each stretch [t0, t1]: the lateral velocity changes by at most
 // kSanityLateralAcceleration · max(t1 − t0, 1 s) (no body starts sliding on
 // its own), and the lateral displacement differs from the trapezoid integral of
@@ -81,6 +84,10 @@ CheckLine penetration_check(const core::Scene& scene, const core::Run& run);
 // teleport by positional correction).
 std::vector<CheckLine> lateral_drift_checks(const core::Scene& scene, const core::Run& run);
 CheckLine unresolved_impacts_check(const core::Scene& scene, const core::Run& run);
+// Rule 5 (sanity.cpp resting_acceleration): over a second in which every body
+// is slower than the resting speed, no body speeds up throughout it by more
+// than kSanityRestingSpeedRise.
+CheckLine resting_acceleration_check(const core::Scene& scene, const core::Run& run);
 
 // The failing lines, one sentence each ("traditional: energy rose ..."), for
 // report.md's warnings.

@@ -23,6 +23,17 @@ inline Spread spread(std::vector<double> v) {
   return {med, v.front(), v.back()};
 }
 
+// spread(v).median, the same number, in linear time (v is reordered): the
+// bootstrap takes 20,000 medians a line.
+inline double median_in_place(std::vector<double>& v) {
+  if (v.empty()) return 0;
+  const std::size_t n = v.size();
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n / 2), v.end());
+  if (n % 2) return v[n / 2];
+  const double below = *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n / 2));
+  return 0.5 * (below + v[n / 2]);
+}
+
 // One scene's (or one stage's) times, seconds per repeat: repeat i of cga and
 // repeat i of traditional ran back to back, so they form a pair. Only the first
 // min(cga.size(), traditional.size()) repeats count.
@@ -187,7 +198,7 @@ inline RatioInterval bootstrap_unpaired_ratio(std::span<const double> before, st
   const auto resampled_median = [&](std::span<const double> v) {
     draw.clear();
     for (std::size_t k = 0; k < v.size(); ++k) draw.push_back(v[static_cast<std::size_t>(rng() % v.size())]);
-    return spread(draw).median;
+    return median_in_place(draw);
   };
   std::vector<double> r;
   r.reserve(static_cast<std::size_t>(resamples));

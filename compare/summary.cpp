@@ -108,7 +108,7 @@ double tolerance_used(const SceneResult& r, double d) {
   const BackendResult* trad = find_backend(r, "traditional");
   const BackendResult* cga = find_backend(r, "cga");
   if (!trad || !cga) return 0;
-  const std::vector<double> radii = body_radii(r.scene);
+  const std::vector<double> radii = body_radii(*r.model);
   const auto& a = trad->run.samples;
   const auto& b = cga->run.samples;
   double used = 0;

@@ -1,6 +1,7 @@
 #include "compare/sweep.hpp"
 
 #include "cga/backend.hpp"
+#include "compare/escape.hpp"
 #include "compare/files.hpp"
 #include "compare/machine.hpp"
 #include "compare/metrics.hpp"
@@ -8,8 +9,8 @@
 #include "compare/report.hpp"
 #include "compare/stats.hpp"
 #include "core/error.hpp"
-#include "core/generators.hpp"
-#include "core/simulator.hpp"
+#include "core/model/generators.hpp"
+#include "core/dynamics/simulator.hpp"
 #include "traditional/backend.hpp"
 
 #include <boost/numeric/odeint.hpp>
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <tuple>
 
 namespace gacompare::compare {
 
@@ -135,7 +137,7 @@ struct Row {
   std::uint64_t steps = 0, evals = 0;
 };
 
-// Time at equal accuracy (issue #13): equal tolerance is not equal accuracy,
+// Time at equal accuracy: equal tolerance is not equal accuracy,
 // so per solver each backend's time and steps are read off its own cells at
 // common error levels — every decade inside the range all the solver's
 // backends reach — and compared with the traditional backend's at that level.
@@ -250,7 +252,7 @@ json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& ref, 
     // Every variant in turn, the order rotated each repeat so drift hits them
     // alike: both backends, and for a scene of bodies the traditional backend
     // with its other rotation representation too (matrix, quaternion and rotor
-    // in one diagram, issue #13).
+    // in one diagram).
     struct Variant {
       std::string label;
       core::Scene scene;
@@ -327,40 +329,38 @@ nlohmann::ordered_json cell_key(const core::Scene& swept, const SweepSpec& spec)
           {"repeats", spec.repeats}, {"build", spec.build}};
 }
 
-bool cell_is_current(const nlohmann::json& record, const nlohmann::json& key) {
+bool cell_is_current(const SweepCell& cell, const nlohmann::json& key) {
   // Compared as unordered JSON: a record read back from a file keeps no order.
-  return record.value("format", 1) == kSweepCellFormat && record.contains("key") &&
-         nlohmann::json(record.at("key")) == nlohmann::json(key);
+  return cell.format == kSweepCellFormat && cell.key == nlohmann::json(key);
 }
 
 void write_sweep_report(const std::filesystem::path& dir, const core::Scene& scene,
-                        const std::vector<nlohmann::json>& units, const SweepSpec& spec) {
+                        const std::vector<SweepCell>& units, const SweepSpec& spec) {
   const Measure x = spec.error.value_or(default_error(scene));
   const auto measures = measures_of(scene);
   const std::string unit(measure_unit(x)), words(measure_words(x));
   std::vector<Row> rows;
   double nothing = INFINITY;
   for (const auto& u : units) {
-    const auto& n = u.at("error_of_nothing");
-    nothing = n.contains(measure_name(x)) ? n.at(std::string(measure_name(x))).get<double>() : INFINITY;
-    for (const auto& c : u.at("cells")) {
+    const auto n = u.error_of_nothing.find(std::string(measure_name(x)));
+    nothing = n == u.error_of_nothing.end() ? INFINITY : n->second;
+    for (const auto& c : u.cells) {
       Row r;
-      r.solver = u.at("solver");
-      r.backend = c.at("backend");
-      r.setting = u.at("setting");
-      r.failure = c.value("failure", "");
+      r.solver = u.solver;
+      r.backend = c.backend;
+      r.setting = u.setting;
+      r.failure = c.failure;
       for (const Measure m : kMeasures) {
         r.final[m] = r.rms[m] = NAN;
-        const auto it = c.at("errors").find(measure_name(m));
-        if (it == c.at("errors").end()) continue;
-        r.final[m] = it->at("final").is_null() ? INFINITY : it->at("final").get<double>();
-        r.rms[m] = it->at("rms").is_null() ? INFINITY : it->at("rms").get<double>();
+        const auto it = c.errors.find(std::string(measure_name(m)));
+        if (it == c.errors.end()) continue;
+        std::tie(r.final[m], r.rms[m]) = it->second;
       }
       if (std::isfinite(r.final[x])) r.error = r.final[x];
-      r.secs = spread(c.at("seconds").get<std::vector<double>>());
+      r.secs = spread(c.seconds);
       r.time = r.secs.median;
-      r.steps = c.at("steps");
-      r.evals = c.at("derivative_evaluations");
+      r.steps = c.steps;
+      r.evals = c.evaluations;
       rows.push_back(r);
     }
   }
@@ -382,7 +382,7 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
     return std::string("the default for a scene with particles; --error chooses another");
   };
   std::ostringstream md, csv;
-  md << "# " << scene.name << ": what accuracy costs in time\n\nReference: traditional, cash_karp45 at 1e-13. "
+  md << "# " << md_text(scene.name) << ": what accuracy costs in time\n\nReference: traditional, cash_karp45 at 1e-13. "
      << spec.repeats << " timed repeats per cell after one warm-up, backends interleaved. Errors against the reference "
      << "at the final time, the largest over particles and bodies: position |x − x_ref| (m), orientation (rad: the "
      << "angle of q_ref⁻¹ q, accurate to rounding), velocity |v − v_ref| (m/s) and angular velocity |ω − ω_ref| "
@@ -401,9 +401,9 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
   // setting was refused) is an empty field; a run that stopped early reads inf.
   auto csv_number = [](double v) { return std::isnan(v) ? std::string() : format_number("%.9g", v); };
   for (const auto& r : rows) {
-    md << "| " << r.solver << " | " << r.backend << " | " << r.setting << " |";
+    md << "| " << md_text(r.solver) << " | " << md_text(r.backend) << " | " << md_text(r.setting) << " |";
     if (!r.failure.empty()) {
-      md << " failed: " << r.failure << " |";
+      md << " failed: " << md_text(r.failure) << " |";
       for (std::size_t k = 0; k < measures.size() + 4; ++k) md << " |";
       md << "\n";
     } else {
@@ -412,13 +412,11 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
          << "–" << format_number("%.3g", 1e3 * r.secs.max) << ") | " << (r.steps ? std::to_string(r.steps) : "–") << " | "
          << r.evals << " | " << (pareto(r) ? "★" : "") << " |\n";
     }
-    std::string failure = r.failure;
-    std::replace(failure.begin(), failure.end(), ',', ';');
-    csv << r.solver << "," << r.backend << "," << r.setting;
+    csv << csv_field(r.solver) << "," << csv_field(r.backend) << "," << csv_field(r.setting);
     for (const Measure m : kMeasures) csv << "," << csv_number(r.final[m]);
     for (const Measure m : kMeasures) csv << "," << csv_number(r.rms[m]);
     csv << "," << format_number("%.9g", r.time) << "," << format_number("%.9g", r.secs.min) << "," << format_number("%.9g", r.secs.max) << ","
-        << r.steps << "," << r.evals << "," << failure << "\n";
+        << r.steps << "," << r.evals << "," << csv_field(r.failure) << "\n";
   }
   write_equal_accuracy(md, rows, usable, x);
   if (std::none_of(rows.begin(), rows.end(), usable))

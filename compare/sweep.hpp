@@ -25,8 +25,9 @@
 // position for a scene with particles. Time: one warm-up, then the median
 // (min–max) of the repeats, each a whole simulation.
 #include "compare/metrics.hpp"
+#include "compare/stored.hpp"
 #include "core/run.hpp"
-#include "core/scene.hpp"
+#include "core/model/scene.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -55,17 +56,15 @@ std::string format_number(const char* printf_format, double x);
 // Orientation for a scene with bodies and no particles, position otherwise.
 Measure default_error(const core::Scene& scene);
 
-// A unit's record is reused by a resumed sweep or a merge only when it was
-// written by this format (1 measured position alone; 2 had no traditional
-// cell with the other rotation representation; 3 had no key) with this key.
-inline constexpr int kSweepCellFormat = 4;
+// A unit's record (compare/stored.hpp, SweepCell) is reused by a resumed sweep
+// or a merge only when it was written by kSweepCellFormat with this key.
 // Everything beside the unit's own solver and setting that changes what its
 // cell holds: the scene (sha256), the duration and sample interval it was cut
 // to (--max-duration), the repeats its time is the median of (--repeat), and
 // the build that ran it (spec.build, a commit: another build times other
 // code). A cell with another key is run again, never mixed in.
 nlohmann::ordered_json cell_key(const core::Scene& swept, const SweepSpec& spec);
-bool cell_is_current(const nlohmann::json& record, const nlohmann::json& key);
+bool cell_is_current(const SweepCell& cell, const nlohmann::json& key);
 
 struct Unit {
   std::string id;       // file name stem: solver-setting
@@ -106,6 +105,6 @@ struct EqualAccuracyPoint {
 // nullopt outside the envelope's range of errors: never extrapolated.
 std::optional<EqualAccuracyPoint> cost_at_error(std::vector<EqualAccuracyPoint> cells, double error);
 void write_sweep_report(const std::filesystem::path& dir, const core::Scene& scene,
-                        const std::vector<nlohmann::json>& units, const SweepSpec& spec);
+                        const std::vector<SweepCell>& units, const SweepSpec& spec);
 
 }  // namespace gacompare::compare

@@ -1,5 +1,5 @@
 #pragma once
-// Results of the geometric operations (issue #3), shared by both backends:
+// Results of the geometric operations, shared by both backends:
 // traditional/geometry.hpp and cga/geometry/*.hpp return these Euclidean answers,
 // so a test or the harness compares them field by field. Degenerate inputs get a
 // kind, never a NaN; the thresholds that decide it are here, once.

@@ -1,8 +1,8 @@
 #pragma once
 // What a simulation run produces, backend-neutral: samples in world terms, the
 // stage profile, solver statistics and counters. results.json is written from it.
-#include "core/ode.hpp"
-#include "core/scene.hpp"
+#include "core/dynamics/ode.hpp"
+#include "core/model/scene.hpp"
 #include "core/stage.hpp"
 
 #include <map>

@@ -1,11 +1,11 @@
-// libFuzzer target for the OBJ reader (issue #16 item 5): any bytes either
+// libFuzzer target for the OBJ reader: any bytes either
 // give a valid closed mesh or are refused with gacompare::Error; a mesh that
 // loads also goes through what a body does with it (convexity, mass
 // properties), which must not fail in any other way.
 //   scripts/fuzz.sh --seconds 60   (seeded with tests/core/data/meshes)
 #include "core/error.hpp"
-#include "core/mass_properties.hpp"
-#include "core/mesh.hpp"
+#include "core/model/mass_properties.hpp"
+#include "core/model/mesh.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The Bullet comparison table of issue #7 from a `gacompare compare` folder:
+"""The Bullet comparison table from a `gacompare compare` folder:
 per collision scene and backend, the moving body's first bounce apexes, where
 it ends (position, speed), how far the total linear momentum moved over the
 run (scenes without gravity, where it is conserved), and the wall time per

@@ -15,7 +15,7 @@ packages=(
   libssl-dev               # SHA-256 of scene files (libcrypto)
   libqhull-dev libtinyobjloader-dev  # convex hulls (Qhull, reentrant C API), OBJ meshes
   libboost-dev             # Boost.Odeint: the peer our solvers are checked and timed against
-  python3                  # scripts/bench-ratios.py (README tables)
+  python3                  # scripts/results.py and the tools it runs (docs/results/)
   gnuplot-nox              # plots: work-precision diagrams, report figures
   clang libclang-rt-dev    # the libFuzzer targets (scripts/fuzz.sh): clang with its fuzzer and sanitizer runtimes
   chromium                 # the harness test renders report.html headless

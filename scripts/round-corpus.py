@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes data/collision/round.json (issue #17): the round pairs of `gacompare
+"""Writes data/collision/round.json: the round pairs of `gacompare
 collide`. Hand-placed sphere-sphere and sphere-box pairs in each region of the
 box (face, edge, vertex, inside) touching, apart and overlapping, then seeded
 random spheres against boxes, tetrahedra, octahedra, icosahedra and hulls at

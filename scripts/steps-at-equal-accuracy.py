@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Steps at equal orientation accuracy: rotor (cga) and quaternion against the
-matrix state, on the bundled spinning_top and dzhanibekov scenes (issue #13).
+matrix state, on the bundled spinning_top and dzhanibekov scenes.
 
 Each scene runs with Cash-Karp at tolerances 1e-4 ... 1e-11 (abs = rel) in three
 representations; the error is the angle of q^-1 q' between the final

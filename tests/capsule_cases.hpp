@@ -1,5 +1,5 @@
 #pragma once
-// Capsules (issue #17 item 2, core/capsule.hpp) through a backend: mass
+// Capsules (core/collision/capsule.hpp) through a backend: mass
 // properties against a numerically integrated solid of revolution; the
 // narrowphase on generated families of degenerate placements (aligned,
 // turned by 90° and by 1e-9, shifted by 0 and 1e-9, parallel to a face,
@@ -7,7 +7,7 @@
 // closed forms and against brute force (the segment densely sampled, each
 // sample a sphere through the sphere narrowphase, the best refined by
 // golden-section search); the corpus (data/collision/capsule.json) against
-// the long-double reference (core/separating_axis.cpp capsule_reference);
+// the long-double reference (core/collision/separating_axis.cpp capsule_reference);
 // and the capsule scenes (data/scenes/capsule_*.json) against their analytic
 // answers. Instantiated by tests/{traditional,cga}/capsule_test.cpp;
 // `Backend` is a tag with the backend type and narrowphase() (as
@@ -142,7 +142,7 @@ inline std::vector<Family> families() {
   out.push_back({"inside the box", box, c6, {}, pose(x_axis, {0.1, 0, 0.2}), -0.4, Vector3d::UnitZ(), 2});
   // Through it, ends outside: 0.2 up clears it (x needs 1.5, y 0.4).
   out.push_back({"through the box", c2, box, pose(x_axis, {0, 0.1, 0.3}), {}, -0.3, -Vector3d::UnitZ(), 2});
-  // Zero length is the sphere itself (core/mesh.hpp make_capsule).
+  // Zero length is the sphere itself (core/model/mesh.hpp make_capsule).
   const auto c0 = cap(0.1, 0);
   out.push_back({"zero length on face", box, c0, {}, pose(x_axis, {0.1, 0.05, 0.6}), 0, Vector3d::UnitZ(), 1});
   // Turned as a whole: a generic rotation about the origin and a move.
@@ -161,7 +161,7 @@ inline std::vector<Family> families() {
 
 // Brute force for an apart pair: each sample of the capsule's segment a
 // sphere of its radius against the other body, through the backend's sphere
-// narrowphase (core/round.hpp), least gap refined by golden section.
+// narrowphase (core/collision/round.hpp), least gap refined by golden section.
 template <class Backend>
 double brute_gap(const Family& f) {
   const bool a_capsule = f.a->is_capsule();
@@ -247,7 +247,7 @@ TYPED_TEST_P(CapsuleCases, CapsuleMassPropertiesMatchTheSolidOfRevolution) {
 
 // The generated families: the closed form's gap within 1e-12 × scale (a few
 // dozen roundings of coordinates ≲ 3; the 1e-9 turns are resolved exactly by
-// the cross-product form, core/capsule.hpp), its normal within 1e-9 rad where
+// the cross-product form, core/collision/capsule.hpp), its normal within 1e-9 rad where
 // it is unique, the number of feature contacts exactly; every apart pair
 // against brute force within 1e-12 × scale (the sphere narrowphase's rounding;
 // the golden-section search's bracket closes to 1e-18). Overlapping pairs:

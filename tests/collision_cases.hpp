@@ -1,5 +1,5 @@
 #pragma once
-// Bounding spheres of issue #6 (core/bounding_volume.hpp over a backend's
+// Bounding spheres (core/collision/bounding_volume.hpp over a backend's
 // SphereOps), checked against independent answers: an analytic minimal sphere
 // (cube, box, regular tetrahedron and icosahedron, points on a sphere), an
 // independent brute force (every circumsphere of 1–4 points, its centre solved
@@ -11,12 +11,12 @@
 // diagonal):
 //   kTol = 1e-9 · L for radii, centres and containment. The algorithms accept a
 //   point outside a sphere by up to kBoundTol·L²/ρ ≤ 2√3·kBoundTol·L ≈ 3.5e-10 L
-//   (core/bounding_volume.hpp), so a returned radius may be that much below the
+//   (core/collision/bounding_volume.hpp), so a returned radius may be that much below the
 //   true minimum; the rounding of the constructions themselves is ~1e-14 L for
 //   these well-separated points. 1e-9 is ~3× the designed slack; tighter would
 //   test the slack, not the algorithm. Each test prints its worst error/kTol.
 #include "cga/bounding_volume.hpp"
-#include "core/bounding_volume.hpp"
+#include "core/collision/bounding_volume.hpp"
 #include "traditional/bounding_volume.hpp"
 
 #include <Eigen/Geometry>
@@ -470,7 +470,7 @@ TYPED_TEST_P(BoundingVolumeCases, OverlapAgreesWithTheDistanceTest) {
   EXPECT_FALSE(Ops::overlap(Ops::sphere(Vec3(0, 0, 0), 1), Ops::sphere(Vec3(2.5, 0, 0), 1)));
 }
 
-// The sphere trees' node operations (issue #14; core/tree_broadphase.hpp)
+// The sphere trees' node operations (core/collision/tree_broadphase.hpp)
 // against a closed form evaluated in long double from the centres and radii
 // (the smallest ball holding two balls: the larger one if it holds the other,
 // else R = ½(d + ρ1 + ρ2) centred on the line of centres), against the

@@ -1,13 +1,13 @@
 #pragma once
-// core/collision_step.hpp through a backend: islands are resolved on their own
-// (issue #14). Instantiated by tests/{traditional,cga}/collision_step_test.cpp.
+// core/collision/collision_step.hpp through a backend: islands are resolved on their own
+//. Instantiated by tests/{traditional,cga}/collision_step_test.cpp.
 //   - Two drops far apart give, body for body and bit for bit, what each gives
 //     alone, and cost exactly the sum of what each costs alone: a time of
 //     impact in one island neither rewinds nor shortens the other.
 //   - A body spinning too fast for the step limit is shortened only while it
 //     has something to hit: alone in the air it takes whole steps.
 //   - A body too fast for any step stops the run with one line naming it.
-#include "core/simulator.hpp"
+#include "core/dynamics/simulator.hpp"
 
 #include <gtest/gtest.h>
 
@@ -75,8 +75,8 @@ TYPED_TEST_P(CollisionStepCases, FarApartIslandsGiveWhatEachGivesAlone) {
 // A cube spinning at 2000 rad/s: its corners travel 0.35 m in a 1 ms step, 7
 // times half its inradius, so near the slab its steps are cut into sub-steps
 // (and it must not pass through); 10 m above the slab it has nothing to hit
-// and takes whole steps, where the report's loop (and this project's before
-// issue #14) shortened every step of every body.
+// and takes whole steps, where the report's loop shortened every step of
+// every body.
 TYPED_TEST_P(CollisionStepCases, StepLimitOnlyWhereThereIsSomethingToHit) {
   core::Scene s = this->drop();
   s.duration = 0.2;
@@ -118,7 +118,7 @@ TYPED_TEST_P(CollisionStepCases, BodyTooFastForAnyStepStopsTheRunNamingIt) {
 // slab's sphere covers far more than the slab. Seeded: 300 cubes of random
 // orientation placed from 3 cm clear of a slab turned by 0.3 rad to 0.05 mm into
 // it; each is in contact by the detection exactly when the exact
-// separating-axis reference (long double, core/separating_axis.hpp) says the
+// separating-axis reference (long double, core/collision/separating_axis.hpp) says the
 // two overlap by more than 1e-12 m (beyond any rounding of the pair's frame).
 TYPED_TEST_P(CollisionStepCases, StaticBoxFilterKeepsEveryPairInContact) {
   using B = TypeParam;
@@ -149,8 +149,9 @@ TYPED_TEST_P(CollisionStepCases, StaticBoxFilterKeepsEveryPairInContact) {
     B::initial_state(model, y);
     core::Profile profile;
     const auto& c = *model.collisions;
-    const core::Detection d = c.detect(model.bodies, std::span<const double>(y).subspan(model.offset),
-                                       c.setup.everyone, {}, profile);
+    auto state = *model.collisions_start;
+    const core::Detection d = c.detect(state, model.bodies, std::span<const double>(y).subspan(model.offset),
+                                       c.setup.all_bodies, {}, profile);
     const auto pose = [&](const core::Body& b) {
       collision::Pose p;
       p.rotation = Eigen::Quaterniond(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]).toRotationMatrix();
@@ -170,7 +171,7 @@ TYPED_TEST_P(CollisionStepCases, StaticBoxFilterKeepsEveryPairInContact) {
 }
 
 // A time-of-impact search's trials integrate the deep pair's bodies alone
-// (core/collision_step.hpp, impact): a cube thrown down at 20 m/s onto a slab
+// (core/collision/collision_step.hpp, impact): a cube thrown down at 20 m/s onto a slab
 // shares its island with a row of three resting cubes that touch one another
 // (the row's first face 1 mm beyond the farthest the cube's corners can ever
 // reach sideways, half its body diagonal: without friction its impulses are
@@ -213,7 +214,7 @@ TYPED_TEST_P(CollisionStepCases, ImpactTrialsIntegrateOnlyTheDeepPairsBodies) {
   }
 }
 
-// Links by distance (core/collision_step.hpp, unlink_far): two cubes resting
+// Links by distance (core/collision/collision_step.hpp, unlink_far): two cubes resting
 // on a slab 1 cm apart, their bounding spheres (radius 0.173 m, centres 0.21 m
 // apart) overlapping, are never linked while at rest (each step their pair is
 // a candidate the narrowphase finds farther apart than either can move), so

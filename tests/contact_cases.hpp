@@ -1,5 +1,5 @@
 #pragma once
-// The degenerate-contact family of issue #12 (core/contact_family.hpp) through a
+// The degenerate-contact family (answers/contact_family.hpp) through a
 // backend, each case against its analytic outcome:
 //   - ContactFamily<Backend, rotation>: one parameterised test per generated
 //     case, named after it (slide_equal_free_turn_z_1e_9rad_offset_y_1e_3);
@@ -13,10 +13,12 @@
 // meets the tests' 120 s timeout.
 // Instantiated by tests/{traditional,cga}/contact_test.cpp; Bullet in
 // tests/compare/contact_bullet_test.cpp.
-#include "core/contact_family.hpp"
-#include "core/simulator.hpp"
+#include "answers/contact_family.hpp"
+#include "core/dynamics/simulator.hpp"
 
 #include <gtest/gtest.h>
+
+#include "long_tests.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -27,11 +29,6 @@
 #include <vector>
 
 namespace gacompare::testing {
-
-inline bool long_tests() {
-  const char* v = std::getenv("GACOMPARE_QUICK_TESTS");
-  return !(v && std::string(v) == "1");
-}
 
 // Indices into contact_family(): the test parameters.
 inline std::vector<std::size_t> contact_cases() {
@@ -92,14 +89,14 @@ TYPED_TEST_SUITE_P(ContactBundled);
 TYPED_TEST_P(ContactBundled, SlideMeetsItsOutcome) { check_bundled<TypeParam>("contact_slide"); }
 TYPED_TEST_P(ContactBundled, RowMeetsItsOutcome) { check_bundled<TypeParam>("contact_row"); }
 TYPED_TEST_P(ContactBundled, Stack5MeetsItsOutcome) { check_bundled<TypeParam>("contact_stack5"); }
-// Issue #14: each body's narrowphase geometry shared by its pairs and each
+// Each body's narrowphase geometry shared by its pairs and each
 // pair's separating axis remembered (the collisions effect's `reuse`, on by
 // default) change no run: the family's cases that are not long, and the
 // bundled collision scenes (the 27-body box for its first second), run again
 // with reuse off give the same samples bit for bit and the same counters,
 // but for the two that count what reuse saves and links_face_tested (which
 // axis the narrowphase stops at decides how often a link needs every face's
-// gap; the link never: core/collisions.hpp, note_apart).
+// gap; the link never: core/collision/collisions.hpp, note_apart).
 TYPED_TEST_P(ContactBundled, ReuseChangesNoRun) {
   std::vector<core::Scene> scenes;
   std::uint64_t kept = 0;

@@ -1,9 +1,9 @@
 #pragma once
-// The validation problems of issue #4, run from the bundled scenes
+// The particle validation problems, run from the bundled scenes
 // (data/scenes) through a backend and checked against analytic answers.
 // Instantiated per backend by tests/{traditional,cga}/dynamics_test.cpp.
-#include "core/generators.hpp"
-#include "core/simulator.hpp"
+#include "core/model/generators.hpp"
+#include "core/dynamics/simulator.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 #pragma once
-// Coulomb friction (issue #17, core/collisions.hpp) through a backend, on the
+// Coulomb friction (core/collision/collisions.hpp) through a backend, on the
 // bundled friction scenes (data/scenes/friction_*.json) against their analytic
-// answers (core/friction_answers.hpp). Instantiated by
+// answers (answers/friction_answers.hpp). Instantiated by
 // tests/{traditional,cga}/friction_test.cpp.
 //
 // Tolerance 1e-3 relative: the issue's bound, and the resolution the answers
@@ -10,9 +10,9 @@
 // scheme itself is exact for these constant forces: RK4 integrates gravity's
 // parabola exactly, the impulses remove one step's slip exactly, and the
 // friction displacement (½ h Δv at resting contacts) puts the positions on the
-// same parabola; measured errors are ~1e-12 (README "Friction").
-#include "core/friction_answers.hpp"
-#include "core/simulator.hpp"
+// same parabola; measured errors are ~1e-12 (docs/results/contacts.md).
+#include "answers/friction_answers.hpp"
+#include "core/dynamics/simulator.hpp"
 
 #include <gtest/gtest.h>
 
@@ -123,7 +123,7 @@ TYPED_TEST_P(FrictionCases, SphereSentAlongFloorSlidesThenRollsAtFiveSevenths) {
 }
 
 // A top spinning on its apex on a floor precesses as Lagrange's heavy top
-// about a fixed point (core/friction_answers.hpp, top_figures): the rate and
+// about a fixed point (answers/friction_answers.hpp, top_figures): the rate and
 // the tilt to 1e-3 relative (the issue's bound; measured 1.3e-5 and 3.6e-4).
 // The apex is held by friction impulses once per collision step, so between
 // them it slides under the free motion: the drift is first order in the step
@@ -135,7 +135,7 @@ TYPED_TEST_P(FrictionCases, TopOnFloorPrecessesAtTheHeavyTopRate) {
 }
 
 // Nine cubes, four spheres in the pockets between them and a plate on the
-// spheres settle where the stacked-rest rule puts them (core/friction_answers.hpp,
+// spheres settle where the stacked-rest rule puts them (answers/friction_answers.hpp,
 // pile_figures): every height to 1e-3 relative (the issue's bound; measured
 // 1.4e-4 — the contacts overlap by up to the 1e-4 m penetration tolerance,
 // and the spheres' impacts push the cubes 8e-6 m apart, which lowers the

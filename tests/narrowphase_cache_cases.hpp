@@ -1,16 +1,16 @@
 #pragma once
-// The narrowphase without per-pair rebuilding (issue #14 item 3) through a
+// The narrowphase without per-pair rebuilding through a
 // backend: each body's geometry built once and shared by its pairs
-// (core/shape.hpp), each pair's separating axis remembered between detections
-// (core/separating_axis.hpp SatHint), support points by hill climbing, and
+// (core/collision/shape.hpp), each pair's separating axis remembered between detections
+// (core/collision/separating_axis.hpp SatHint), support points by hill climbing, and
 // edge pairs by walking the Gauss map. Each against the plain computation it
 // replaces: geometry rebuilt for the pair, no axis remembered, every vertex
 // scanned, every edge pair tested. Instantiated by
 // tests/{traditional,cga}/narrowphase_test.cpp; `Backend` is a tag with Body.
-#include "core/collision_cases.hpp"
-#include "core/narrowphase.hpp"
-#include "core/separating_axis.hpp"
-#include "core/shape.hpp"
+#include "answers/collision_cases.hpp"
+#include "core/collision/narrowphase.hpp"
+#include "core/collision/separating_axis.hpp"
+#include "core/collision/shape.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -283,7 +283,7 @@ TYPED_TEST_P(NarrowphaseCacheCases, WalkingTheGaussMapMeetsEveryCrossing) {
   EXPECT_GE(trusted, edges * 99 / 100);
 }
 
-// A shape's own unit (core/shape.hpp "Units"): the distance of each vertex of
+// A shape's own unit (core/collision/shape.hpp "Units"): the distance of each vertex of
 // o from each face of f, read through the views (f's plane moved into o's
 // frame and unit, times o's unit), against n·x − d in long double from the
 // meshes and poses, for cubes of 1e-2, 1 and 1e3 m side by side. Within
@@ -316,7 +316,7 @@ TYPED_TEST_P(NarrowphaseCacheCases, ShapesMeasureDistancesInMetresAtEveryScale) 
   }
 }
 
-// Touching (core/narrowphase.hpp): a pair within the touching band has its
+// Touching (core/collision/narrowphase.hpp): a pair within the touching band has its
 // contacts whichever way its yes/no rounds, and one beyond it has none, with or
 // without an axis remembered from a pair far apart (which separates it at once:
 // the contacts must not depend on where the test stopped). Equal cubes face to
@@ -343,7 +343,7 @@ TYPED_TEST_P(NarrowphaseCacheCases, TouchingPairsHaveTheirContacts) {
   }
 }
 
-// The islands' link gap (collision::face_gap, core/collisions.hpp note_apart):
+// The islands' link gap (collision::face_gap, core/collision/collisions.hpp note_apart):
 // for every pair apart of the random corpus and of the degenerate members
 // 1e-3 apart, it is a lower bound of the distance (at most the exact
 // reference's best gap, every axis in long double: 1e-12 of the size for

@@ -1,12 +1,12 @@
 #pragma once
-// Narrowphase cases of issue #6 run through a backend (traditional/ or cga/
+// Narrowphase cases run through a backend (traditional/ or cga/
 // narrowphase.hpp and segment_triangle.hpp) and checked against independent
 // answers: a 3×3 solve for the segment–triangle hit, analytic box contacts,
 // the long-double separating-axis reference on the corpus. Instantiated by
 // tests/{traditional,cga}/narrowphase_test.cpp; `Backend` is a tag with
 // segment_triangle() and narrowphase().
-#include "core/collision_cases.hpp"
-#include "core/separating_axis.hpp"
+#include "answers/collision_cases.hpp"
+#include "core/collision/separating_axis.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
@@ -135,7 +135,7 @@ TYPED_TEST_P(NarrowphaseCases, EdgeThroughEdge) {
 // Agreement with the exact reference on a corpus: yes/no outside the touching
 // band for both methods (the report's detector and the separating-axis fast
 // path), depth within 1e-9 × scale for overlapping pairs (the fast path prunes
-// edge pairs and works in double; see core/separating_axis.hpp for why 1e-9
+// edge pairs and works in double; see core/collision/separating_axis.hpp for why 1e-9
 // holds down to edges 1e-6 rad from parallel), and a normal along which the
 // reference overlap equals the depth.
 template <class Backend>
@@ -182,7 +182,7 @@ TYPED_TEST_P(NarrowphaseCases, AgreesWithTheReferenceOnTheCorpus) {
   EXPECT_GE(files, 2);
 }
 
-// ---- the contact manifold (core/manifold.hpp, issue #12) ----
+// ---- the contact manifold (core/collision/manifold.hpp) ----
 
 // Two equal cubes face to face, b entering a's +x face by δ: the commonest
 // contact, and the one fig. 7's detector gets wrong. The vertices of b's
@@ -212,7 +212,7 @@ TYPED_TEST_P(NarrowphaseCases, ManifoldOfEqualCubesFaceToFace) {
   }
 }
 
-// The degenerate family of issue #12 at the level of one query: b offset
+// The degenerate contact family at the level of one query: b offset
 // sideways by 0, 1e-9 and 1e-3 of the size along y and z, and turned about
 // the contact normal by 0, 1e-9 rad, 90° and 45°. Always: every contact along
 // +x, δ deep, on the plane midway between the faces (within 1e-12: the turned

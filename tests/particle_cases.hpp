@@ -3,7 +3,7 @@
 // closed-form solutions. Instantiated once per backend by
 // tests/traditional/particle_test.cpp and tests/cga/particle_test.cpp.
 #include "core/error.hpp"
-#include "core/simulator.hpp"
+#include "core/dynamics/simulator.hpp"
 
 #include <gtest/gtest.h>
 
@@ -103,7 +103,7 @@ TYPED_TEST_P(ParticleCases, NonFiniteStateStopsTheRunByName) {
 // x + h v passes the largest double (1.8e308) in the third half-second step,
 // in the solver's combination. The stage named is integrate, and the samples
 // before it survive. (A scene file cannot ask for that speed: the loader
-// refuses speeds above light's, core/budget.hpp; the scene is set in code to
+// refuses speeds above light's, core/model/budget.hpp; the scene is set in code to
 // test the simulator's own backstop.)
 TYPED_TEST_P(ParticleCases, OverflowInTheSolverIsNamedIntegrate) {
   auto scene = scene_from(R"({"name": "n", "duration": 2.0, "output": {"every": 0.5},

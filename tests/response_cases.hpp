@@ -1,11 +1,11 @@
 #pragma once
-// Collision response cases of issue #7 (§2.5) run through a backend on the
+// Collision response cases (§2.5) run through a backend on the
 // bundled scenes (data/scenes), checked against analytic answers: bounce
 // heights falling by ε², rest, conservation across an elastic impact, an
 // edge–edge impulse along the edges' common normal, no tunnelling among 27
 // bodies in a box, the scene rejected when bodies start overlapping.
 // Instantiated by tests/{traditional,cga}/response_test.cpp.
-#include "core/simulator.hpp"
+#include "core/dynamics/simulator.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -88,7 +88,7 @@ TYPED_TEST_P(ResponseCases, EdgeAndCornerDropsComeToRestFlat) {
       // different depths in [0, tol], so the tilt is at most tol / (face diagonal).
       const double tilt = std::acos(std::min(1.0, r.row(2).cwiseAbs().maxCoeff()));
       EXPECT_LT(tilt, 1e-4 / (0.2 * std::sqrt(2.0))) << name << " t=" << s.t;
-      // The impulses are solved to 1e-6 m/s (core/collisions.hpp), which at the
+      // The impulses are solved to 1e-6 m/s (core/collision/collisions.hpp), which at the
       // cube's half width is 1e-5 rad/s of rocking at most.
       EXPECT_LT((b.velocity - body(*settled, 1).velocity).norm(), 1e-6) << name << " t=" << s.t;
       EXPECT_LT((b.angular_velocity - body(*settled, 1).angular_velocity).norm(), 1e-5) << name << " t=" << s.t;
@@ -207,8 +207,8 @@ TYPED_TEST_P(ResponseCases, IllinoisNeedsFewerEvaluationsThanBisection) {
   EXPECT_LT(per_search(runs[core::TimeOfImpact::illinois]), per_search(runs[core::TimeOfImpact::bisection]));
 }
 
-// Every time-of-impact search (core/time_of_impact.hpp) with either motion
-// (issue #14) gives the flat drop's bounces: apexes falling by ε² to 1 % (as
+// Every time-of-impact search (core/collision/time_of_impact.hpp) with either motion
+// gives the flat drop's bounces: apexes falling by ε² to 1 % (as
 // FlatDropBouncesByEpsilonSquaredAndRests says why), no unresolved search, no
 // sinking below the tolerance. Either motion integrates the island once per
 // search found (to the time found; fixed-step RK4 moves the pair's bodies
@@ -250,7 +250,7 @@ TYPED_TEST_P(ResponseCases, EveryImpactSearchAndMotionGivesTheFlatDropsBounces) 
   EXPECT_LE(per_search[std::pair(core::TimeOfImpact::bisection, core::ImpactMotion::interpolate)], 4.0);
 }
 
-// Far from the origin (issue #16 item 6): the same scene moved by D along
+// Far from the origin: the same scene moved by D along
 // (1, 1, 1), D = 1e3 … 1e9 m. A coordinate of size D is stored to D·1.1e-16,
 // so moving a scene perturbs every position update by that much.
 // - The flat drop is not sensitive to such perturbations: it follows its
@@ -296,7 +296,7 @@ TYPED_TEST_P(ResponseCases, FarFromTheOriginGivesTheAnswersAtTheOrigin) {
   }
 }
 
-// Every broadphase (issue #14, core/broadphase.hpp: sort and sweep, the AABB
+// Every broadphase (core/collision/broadphase.hpp: sort and sweep, the AABB
 // tree, the sphere tree) finds the same pairs, so gives the same run, number
 // for number: the 27 bodies in a box for 0.5 s (chaotic: any difference in a
 // pair would part the runs), and the flat drop 1e7 m from the origin, where

@@ -1,11 +1,11 @@
 #pragma once
-// Rigid-body cases of issue #5 run through a backend and checked against
+// Rigid-body cases run through a backend and checked against
 // analytic answers: free flight, the Dzhanibekov flip, the torque-free symmetric
 // top, and the drift of the stored rotation with and without renormalisation.
 // Instantiated per backend (and for the traditional quaternion variant) by
 // tests/{traditional,cga}/rigid_body_test.cpp. `Variant` supplies the backend and
 // the scene's "rigid_body" options.
-#include "core/simulator.hpp"
+#include "core/dynamics/simulator.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -59,7 +59,7 @@ TYPED_TEST_P(RigidCases, FreeFlightFollowsTheParabolaAndKeepsItsSpin) {
     EXPECT_LT((L - L0).norm(), 1e-8 * L0.norm()) << "t=" << s.t;
     EXPECT_NEAR(s.kinetic + s.potential, e0, 1e-8 * std::abs(e0)) << "t=" << s.t;
   }
-  // Only the listed effect is evaluated (issue #13): gravity once per force
+  // Only the listed effect is evaluated: gravity once per force
   // evaluation for the one body, no drag or applied-force term at all.
   EXPECT_EQ(run.counters.at("effect_gravity_terms"), run.solver.derivative_evaluations);
   for (const char* absent : {"effect_linear_drag_terms", "effect_quadratic_drag_terms", "effect_applied_forces_terms"})
@@ -164,7 +164,7 @@ TYPED_TEST_P(RigidCases, RotationDriftGrowsWithoutRenormalisationAndNotWithIt) {
 // the matrix, ω = R I⁻¹ Rᵀ L grows as it stretches, so the drift feeds itself
 // (measured: ‖RᵀR − I‖ ≈ 2 after 1000 steps at |ω| = 36 rad/s, h = 1e-3, and the
 // state overflows before 2000). A quaternion or rotor takes ω from its
-// normalised self (issue #13), so its norm only grows geometrically: each step
+// normalised self, so its norm only grows geometrically: each step
 // multiplies |q|² by 1 + h²|ω|²/4, with |ω| = |I⁻¹ Rᵀ L| ≤ |L|/I_min (L is
 // constant: no torque), so 1 + drift ≤ (1 + h² |L|² / (4 I_min²))^N. (Before,
 // ω scaled with the norm's fourth power and overflowed within 750 steps.)
@@ -253,7 +253,7 @@ TYPED_TEST_P(RigidCases, AppliedForcesGiveForceAndTorque) {
   EXPECT_LT((run.samples[2].angular_momentum - run.samples[1].angular_momentum).norm(), 1e-15);
 }
 
-// The physical error norm (issue #13): the same rotation error reads the
+// The physical error norm: the same rotation error reads the
 // same in every representation. Two states of one body, turned by θ = 1e-6
 // rad about an oblique axis (or spinning δω = 1e-6 rad/s faster), their
 // difference as the step's error: with abs = 1, rel = 0 the ratio is θ (or
@@ -299,7 +299,7 @@ TYPED_TEST_P(RigidCases, PhysicalErrorNormReadsTheRotationAngle) {
   check(y_faster, theta);
 }
 
-// The time of impact's interpolated motion (issue #14, §4.3.2): the pose s of
+// The time of impact's interpolated motion (§4.3.2): the pose s of
 // the way between two states moves the centre along the line and turns about
 // the one fixed axis at a constant rate, by the shorter way round (a turn by
 // 5.5 rad is the turn by 5.5 − 2π the other way), against Eigen's angle–axis

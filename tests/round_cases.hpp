@@ -1,17 +1,17 @@
 #pragma once
-// Round shapes (issue #17 item 2, core/round.hpp) through a backend: the
+// Round shapes (core/collision/round.hpp) through a backend: the
 // narrowphase of sphere pairs against closed forms and against the
-// long-double reference (core/separating_axis.cpp, round_reference: Ericson's
+// long-double reference (core/collision/separating_axis.cpp, round_reference: Ericson's
 // nearest point of every triangle, a method that shares nothing with the
 // narrowphase's face polygons and edges), and the round scenes
 // (data/scenes/sphere_*.json) against their analytic answers. Instantiated by
 // tests/{traditional,cga}/round_test.cpp; `Backend` is a tag with the backend
 // type and narrowphase() (as tests/narrowphase_cases.hpp).
-#include "core/collision_cases.hpp"
-#include "core/mass_properties.hpp"
-#include "core/mesh.hpp"
-#include "core/separating_axis.hpp"
-#include "core/simulator.hpp"
+#include "answers/collision_cases.hpp"
+#include "core/model/mass_properties.hpp"
+#include "core/model/mesh.hpp"
+#include "core/collision/separating_axis.hpp"
+#include "core/dynamics/simulator.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -1,7 +1,8 @@
 #pragma once
 // The traditional backend as the simulator sees it (core::Backend concept): its
 // vector algebra for particles and its rigid bodies, composed by core::Simulation.
-#include "core/simulation.hpp"
+#include "core/dynamics/simulation.hpp"
+#include "core/dynamics/simulator.hpp"
 #include "traditional/particle.hpp"
 #include "traditional/bounding_volume.hpp"
 #include "traditional/narrowphase.hpp"
@@ -17,8 +18,17 @@ struct Collide {
   using Spheres = SphereOps;
 };
 
+// Every seam, checked here: a missing operation is a compile error naming the
+// concept and the expression that failed.
+static_assert(core::ParticleVectorOps<VectorOps>);
+static_assert(core::RigidBodies<RigidBodies>);
+static_assert(collision::NarrowphaseAlgebra<NarrowAlgebra>);
+static_assert(core::SphereTreeOps<SphereOps>);
+static_assert(core::CollisionAlgebra<Collide>);
+
 struct Backend : core::Simulation<VectorOps, RigidBodies, Collide> {
   static constexpr std::string_view name = "traditional";
 };
+static_assert(core::Backend<Backend>);
 
 }  // namespace gacompare::traditional

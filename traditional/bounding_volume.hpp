@@ -1,12 +1,12 @@
 #pragma once
-// Bounding spheres, traditional algebra (issue #6, §2.4.1): the SphereOps policy
-// that core/bounding_volume.hpp (exhaustive search, Welzl), core/broadphase.hpp
-// (sort and sweep) and core/tree_broadphase.hpp (the sphere tree) run on. A
+// Bounding spheres, traditional algebra (§2.4.1): the SphereOps policy
+// that core/collision/bounding_volume.hpp (exhaustive search, Welzl), core/collision/broadphase.hpp
+// (sort and sweep) and core/collision/tree_broadphase.hpp (the sphere tree) run on. A
 // sphere is a centre and a radius (4 numbers; §2.4.1 notes the dual sphere's
 // 5). Twin: cga/bounding_volume.hpp,
 // with the same names in the same order: put them side by side and only the
 // algebra differs.
-#include "core/bounding_volume.hpp"
+#include "core/collision/bounding_volume.hpp"
 #include "traditional/geometry.hpp"
 
 #include <optional>
@@ -51,7 +51,7 @@ struct SphereOps {
     return (s2.centre - s1.centre).squaredNorm() <= r * r;
   }
 
-  // The sphere trees' node operations (issue #14, §4.2.2; core/tree_broadphase.hpp).
+  // The sphere trees' node operations (§4.2.2; core/collision/tree_broadphase.hpp).
   // The smallest sphere enclosing two spheres: one of them when it holds the
   // other, else centred on the line of centres, R = ½(d + ρ1 + ρ2), its
   // surface touching both far sides.

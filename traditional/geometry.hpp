@@ -1,5 +1,5 @@
 #pragma once
-// The traditional twins of cga/geometry (issue 3): the same operations, the
+// The traditional twins of cga/geometry: the same operations, the
 // same function names and the same Euclidean result types, with vectors, dot and
 // cross products (Eigen). Put this file beside cga/geometry/*.hpp: only the
 // algebra differs.

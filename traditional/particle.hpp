@@ -1,8 +1,8 @@
 #pragma once
 // The traditional algebra for particles: Eigen 3-vectors with dot and cross
 // products. Particle dynamics and constraints are written once over it in
-// core/particle_system.hpp. Twin of cga/particle.hpp.
-#include "core/particle_system.hpp"
+// core/dynamics/particle_system.hpp. Twin of cga/particle.hpp.
+#include "core/dynamics/particle_system.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>

@@ -44,7 +44,7 @@ Layout layout(const RigidBodies::Model& m, std::size_t b) {
   return {base, base + 3, base + 3 + rot, base + 6 + rot};
 }
 // The rotation the state stands for. A quaternion's is that of q/|q|, as the
-// cga backend reads its rotor (one policy, issue #13): Eigen's
+// cga backend reads its rotor (one policy): Eigen's
 // toRotationMatrix assumes a unit quaternion, so a drifted one gave a matrix
 // that is not a rotation, and ω = R I⁻¹ Rᵀ L a rate off by the drift. The
 // homogeneous form (every entry quadratic in q) divided by |q|² is exact for
@@ -64,16 +64,16 @@ Mat rotation(const RigidBodies::Model& m, std::span<const double> y, const Layou
 }
 }  // namespace
 
-RigidBodies::Model RigidBodies::build(const core::Scene& scene, const std::vector<core::BodyProperties>& props) {
+RigidBodies::Model RigidBodies::build(const core::Scene& scene, const core::Model& model) {
   Model m;
   m.rotation = scene.rigid_body.rotation;
   m.renormalise = scene.rigid_body.renormalise;
   m.stride = m.rotation == core::Rotation::matrix ? 18 : 13;
-  m.effects = core::body_effects(scene);
+  m.effects = model.effects;
   m.y0.assign(m.stride * scene.bodies.size(), 0.0);
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const auto& body = scene.bodies[b];
-    const auto& p = props[b];
+    const core::BodyModel& p = model.bodies[b];
     m.names.push_back(body.name);
     const bool fixed = body.is_static;
     m.bodies.push_back({fixed ? 0.0 : 1.0 / p.mass, fixed ? Mat::Zero().eval() : p.inertia.inverse().eval(), p.inertia,

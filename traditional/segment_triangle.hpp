@@ -1,7 +1,7 @@
 #pragma once
 // Segment through triangle, the traditional way (§2.4.4, Sunday's parametric
 // method [11], eq. 39–42). Twin: cga/segment_triangle.hpp (same names, same
-// result type core/collision.hpp SegmentHit).
+// result type core/collision/collision.hpp SegmentHit).
 //
 // Stage 1, eq. 39: r = n·(T0 − L0) / n·(L1 − L0), on the segment for 0 ≤ r ≤ 1.
 // Stage 2, eq. 41–42: s = w·(n × v)/(u·(n × v)), t = w·(n × u)/(v·(n × u)) with
@@ -14,7 +14,7 @@
 // eq. 41–42) is prepared once per triangle (PreparedTriangle), as a body tests
 // each of its triangles against many edges; the twin prepares its reciprocal
 // frame the same way.
-#include "core/collision.hpp"
+#include "core/collision/collision.hpp"
 #include "core/geometry.hpp"
 
 #include <Eigen/Geometry>

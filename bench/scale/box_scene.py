@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes a scale scene (issue #14): N mixed bodies thrown about in a closed box
+"""Writes a scale scene: N mixed bodies thrown about in a closed box
 at constant density, the bundled bodies_in_box scaled up.
 
   bench/scale/box_scene.py --bodies 1000 --seed 1 > box_1000.json
@@ -66,8 +66,8 @@ def scene(bodies, seed, duration, every):
         })
     return {
         "name": f"box_{bodies}",
-        "description": f"{bodies} mixed bodies thrown about in a closed box at constant density (issue #14's scale "
-                       f"scene, bench/scale/box_scene.py --bodies {bodies} --seed {seed}); chaotic, so the backends "
+        "description": f"{bodies} mixed bodies thrown about in a closed box at constant density (the scale "
+                       f"benchmark's scene, bench/scale/box_scene.py --bodies {bodies} --seed {seed}); chaotic, so the backends "
                        "part and the divergence check is bounded by the box.",
         "duration": duration,
         "output": {"every": every},

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""What the narrowphase's reuse saves in a whole run (issue #14 item 3): the
+"""What the narrowphase's reuse saves in a whole run: the
 scale scenes (bench/scale/box_scene.py) with the collisions effect's `reuse` on
 (each body's narrowphase geometry built once per detection, each pair's
 separating axis remembered) and off (both bodies rebuilt for every pair,

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The scale table (issue #14): seconds of run time per simulated second for
+"""The scale table: seconds of run time per simulated second for
 boxes of N bodies (bench/scale/box_scene.py) through traditional, cga and
 Bullet, each stage's share, and the exponent p of cost ~ N^p.
 

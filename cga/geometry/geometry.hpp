@@ -1,5 +1,5 @@
 #pragma once
-// The conformal geometry of issue 3 in one include: entities (Table 1), meets
+// The conformal geometry in one include: entities (Table 1), meets
 // (§1.6), reflections (§1.7), inside/outside (§2.4.1) and the local-origin
 // precision remedy. Twin: traditional/geometry.hpp.
 #include "cga/geometry/entities.hpp"

@@ -1,4 +1,4 @@
-// The issue #4 validation problems through the cga backend.
+// The particle validation problems through the cga backend.
 #include "cga/backend.hpp"
 #include "../dynamics_cases.hpp"
 

@@ -6,8 +6,8 @@
 #include "compare/accuracy.hpp"
 
 #include "compare/runner.hpp"
-#include "core/generators.hpp"
-#include "core/scene.hpp"
+#include "core/model/generators.hpp"
+#include "core/model/scene.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,13 @@
-// Bullet as a whole-simulation reference (issue #7): the world built from a scene
+// Bullet as a whole-simulation reference: the world built from a scene
 // does what the scene says, within what Bullet's integrator and contact solver
 // allow; each tolerance below says where it comes from.
 #include "compare/bullet_world.hpp"
 #include "compare/runner.hpp"
 #include "core/error.hpp"
-#include "core/friction_answers.hpp"
-#include "core/mass_properties.hpp"
-#include "core/mesh.hpp"
-#include "core/simulator.hpp"
+#include "answers/friction_answers.hpp"
+#include "core/model/mass_properties.hpp"
+#include "core/model/mesh.hpp"
+#include "core/dynamics/simulator.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -355,9 +355,9 @@ TEST(BulletWorld, RunnerRunsBulletWhereItCan) {
   EXPECT_EQ(r.backends[0].wall_seconds.size(), 2u);
 }
 
-// Friction (issue #17): Bullet runs the friction scenes with our μ per pair
+// Friction: Bullet runs the friction scenes with our μ per pair
 // (√(μ_a μ_b) by its combiner hook, bullet_world.cpp). Its answers are judged
-// by where its method puts them, not by ours (README "Friction"): its
+// by where its method puts them, not by ours (docs/collision-response.md, "Friction"): its
 // semi-implicit Euler puts positions ½ a h t off the parabola (short when
 // braking), and its resting contact jitters (the limit cycle at the top of
 // bullet_world.cpp), so a held box slips now and then. Bounds, each about

@@ -21,6 +21,11 @@ using core::Vec3;
 
 constexpr double kDt = 0.01;
 
+// A baseline as `check` reads it from its file (compare/stored.hpp).
+compare::Baseline read_back(const nlohmann::ordered_json& stored) {
+  return compare::parse_baseline(nlohmann::json::parse(stored.dump()), "baseline.json");
+}
+
 // A 0.2 m cube (r = √3 · 0.1 m) and a particle, both at rest, with a static slab
 // that never moves; default check bounds (1e-6 m between backends, 1e-9 m from a baseline).
 core::Scene scene() {
@@ -62,7 +67,7 @@ core::Run run(const core::Scene& s, const std::string& backend, const Change& ch
 
 compare::SceneResult result(const Change& cga_change, const Change& bullet_change = {}) {
   const core::Scene s = scene();
-  compare::SceneResult r{s, {}};
+  compare::SceneResult r{s, {}, std::make_shared<const core::Model>(core::compile(s))};
   r.backends.push_back({run(s, "traditional"), {{}}, {1.0}, true});
   r.backends.push_back({run(s, "cga", cga_change), {{}}, {1.0}, true});
   if (bullet_change) r.backends.push_back({run(s, "bullet", bullet_change), {{}}, {1.0}, true});
@@ -85,7 +90,7 @@ Eigen::Vector4d turned(double angle) {
 const double kR = std::sqrt(3.0) * 0.1;
 
 TEST(CheckBounds, BodyRadiusIsTheFarthestVertexFromTheCentreOfMass) {
-  const auto radii = compare::body_radii(scene());
+  const auto radii = compare::body_radii(core::compile(scene()));
   ASSERT_EQ(radii.size(), 2u);
   EXPECT_NEAR(radii[0], kR, 1e-15);
   EXPECT_NEAR(radii[1], std::sqrt(1 + 1 + 0.01), 1e-15);
@@ -138,7 +143,7 @@ TEST(CheckBounds, AgainstTheBaselineEachMeasureHasItsBound) {
   const compare::SceneResult r = result({});
   const nlohmann::json stored = compare::baseline_json(r);
   const double d = r.scene.check.baseline_tolerance;
-  for (const auto& l : compare::check_scene(r, stored)) EXPECT_NE(l.verdict, CheckLine::Verdict::fail) << l.what;
+  for (const auto& l : compare::check_scene(r, read_back(stored))) EXPECT_NE(l.verdict, CheckLine::Verdict::fail) << l.what;
 
   struct Doctor {
     const char* what;
@@ -160,7 +165,7 @@ TEST(CheckBounds, AgainstTheBaselineEachMeasureHasItsBound) {
     for (const double f : {0.9, 1.1}) {
       nlohmann::json b = stored;
       doc.apply(b["runs"][1]["final"]["bodies"]["cube"], f * doc.bound);
-      const auto lines = compare::check_scene(r, b);
+      const auto lines = compare::check_scene(r, read_back(b));
       const CheckLine& l = line(lines, "cga", doc.what);
       EXPECT_NEAR(l.value, f * doc.bound, 1e-12 * doc.bound) << doc.what;
       EXPECT_EQ(l.verdict, f < 1 ? CheckLine::Verdict::pass : CheckLine::Verdict::fail) << doc.what << " × " << f;
@@ -184,7 +189,7 @@ TEST(CheckBounds, ABaselineWithoutVelocitiesStillReads) {
     }
   }
   old["runs"][0]["final"]["bodies"]["cube"]["orientation"] = {std::cos(1e-9), std::sin(1e-9), 0, 0};  // 2e-9 rad
-  const auto lines = compare::check_scene(r, old);
+  const auto lines = compare::check_scene(r, read_back(old));
   EXPECT_EQ(line(lines, "traditional", "orientation from baseline, final state (rad)").verdict, CheckLine::Verdict::pass);
   EXPECT_NEAR(line(lines, "traditional", "orientation from baseline, final state (rad)").value, 2e-9, 1e-22);
   EXPECT_EQ(line(lines, "cga", "velocities from baseline").verdict, CheckLine::Verdict::info);

@@ -1,4 +1,4 @@
-// `gacompare collide` and `gacompare corpus` end to end (issue #6): one entry
+// `gacompare collide` and `gacompare corpus` end to end: one entry
 // per pair with every method's answer and time, the table, the disagreements
 // written as case files that replay, and one-line errors for bad case files.
 #include "cli_run.hpp"

@@ -1,4 +1,4 @@
-// The degenerate-contact family (core/contact_family.hpp, issue #12) through
+// The degenerate-contact family (answers/contact_family.hpp) through
 // Bullet (compare/bullet_world.hpp), against the same analytic outcomes as our
 // backends. Bullet is the reference the issue holds us to, so where Bullet
 // itself misses an outcome this file says so, case by case, with what was

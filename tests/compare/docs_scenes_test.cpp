@@ -1,11 +1,11 @@
-// docs/scenes.md's examples are complete scenes: each ```json block that is a
-// scene loads, and runs through both backends with neither stopping early and
-// the two agreeing within the scene's check.max_divergence (compare/check.hpp's
-// bounds, as `gacompare check` holds every bundled scene). A change to the
-// format that the page does not follow fails here.
+// The examples of docs/scenes.md and README.md are complete scenes: each
+// ```json block loads, and runs through both backends with neither stopping
+// early and the two agreeing within the scene's check.max_divergence
+// (compare/check.hpp's bounds, as `gacompare check` holds every bundled
+// scene). A change to the format that the pages do not follow fails here.
 #include "compare/check.hpp"
 #include "compare/runner.hpp"
-#include "core/scene.hpp"
+#include "core/model/scene.hpp"
 
 #include <gtest/gtest.h>
 
@@ -27,21 +27,38 @@ std::vector<std::string> json_blocks(const std::string& md) {
   return out;
 }
 
-}  // namespace
-
-TEST(DocsScenes, EveryExampleLoadsAndRunsInBothBackends) {
-  std::ifstream in(std::string(GACOMPARE_SOURCE_DIR) + "/docs/scenes.md");
-  ASSERT_TRUE(in) << "docs/scenes.md not found";
+std::vector<std::string> json_blocks_of(const std::string& relative) {
+  std::ifstream in(std::string(GACOMPARE_SOURCE_DIR) + "/" + relative);
+  EXPECT_TRUE(in) << relative << " not found";
   std::stringstream text;
   text << in.rdbuf();
-  const auto blocks = json_blocks(text.str());
-  ASSERT_EQ(blocks.size(), 7u);  // particles, constraints, rigid bodies, collisions, friction, sphere, capsule
+  return json_blocks(text.str());
+}
+
+// Loads each block as a scene and runs it through both backends, which must
+// pass every check between them.
+void expect_runs(const std::vector<std::string>& blocks, const std::string& where) {
   for (const auto& block : blocks) {
     core::Scene scene;
-    ASSERT_NO_THROW(scene = core::parse_scene(block, "docs/scenes.md")) << block;
+    ASSERT_NO_THROW(scene = core::parse_scene(block, where)) << block;
     const auto result = compare::compare_scene(scene, {"traditional", "cga"}, 1, compare::Selection::exactly);
     for (const auto& line : compare::check_scene(result, std::nullopt))
       EXPECT_NE(line.verdict, compare::CheckLine::Verdict::fail)
           << scene.name << ": " << line.backend << " " << line.what << ": " << line.note;
   }
+}
+
+}  // namespace
+
+TEST(DocsScenes, EveryExampleLoadsAndRunsInBothBackends) {
+  const auto blocks = json_blocks_of("docs/scenes.md");
+  ASSERT_EQ(blocks.size(), 7u);  // particles, constraints, rigid bodies, collisions, friction, sphere, capsule
+  expect_runs(blocks, "docs/scenes.md");
+}
+
+// The README's one example is a complete scene too.
+TEST(DocsScenes, TheReadmeExampleLoadsAndRuns) {
+  const auto blocks = json_blocks_of("README.md");
+  ASSERT_EQ(blocks.size(), 1u);
+  expect_runs(blocks, "README.md");
 }

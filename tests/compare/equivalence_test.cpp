@@ -8,7 +8,7 @@
 // the factor 1 + |ω₀|·T (|ω₀| the fastest initial spin, T the duration).
 #include "compare/results.hpp"
 #include "compare/runner.hpp"
-#include "core/scene.hpp"
+#include "core/model/scene.hpp"
 
 #include <gtest/gtest.h>
 

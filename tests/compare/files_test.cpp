@@ -1,9 +1,9 @@
 // compare/files.hpp: names from scene files as file names, whole-or-nothing
-// writes and locked output folders (issue #16).
+// writes and locked output folders.
 #include "compare/files.hpp"
 
 #include "core/error.hpp"
-#include "core/sha256.hpp"
+#include "core/model/sha256.hpp"
 
 #include <gtest/gtest.h>
 

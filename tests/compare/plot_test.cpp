@@ -1,6 +1,6 @@
 // compare/plot.cpp: text from scene files reaches gnuplot as data, never as a
-// command (issue #16's first finding: a name with backticks ran a shell command
-// through the plot script).
+// command (a name with backticks must not run a shell command through the
+// plot script).
 #include "compare/plot.hpp"
 
 #include <gtest/gtest.h>

@@ -1,11 +1,11 @@
 // The collision referees (compare/referee.hpp) on pairs with analytic answers:
-// the conventions of core/collision.hpp (normal from a towards b, depth > 0
+// the conventions of core/collision/collision.hpp (normal from a towards b, depth > 0
 // penetrating, −distance apart, contact midway), symmetry under a ↔ b, and
 // independence of where the pair sits. Each tolerance says why it is what it is.
 #include "compare/referee.hpp"
 
 #include "core/error.hpp"
-#include "core/mesh.hpp"
+#include "core/model/mesh.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

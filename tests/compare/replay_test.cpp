@@ -6,7 +6,7 @@
 #include "compare/results.hpp"
 
 #include "csv_fields.hpp"
-#include "core/scene.hpp"
+#include "core/model/scene.hpp"
 
 #include <gtest/gtest.h>
 
@@ -95,7 +95,8 @@ TEST(SceneRecord, BodiesAboutTheirCentreOfMassAndConstraints) {
   // centre of mass, 12 triangles, radius half the space diagonal
   // ½√(0.01 + 0.16 + 0.81). 1e-15: the vertices are halves of the sides,
   // the centre of mass their mean (rounding only).
-  const auto box = scene_json(core::load_scene(kScenes + "tumbling_box.json"));
+  const auto box_scene = core::load_scene(kScenes + "tumbling_box.json");
+  const auto box = scene_json(box_scene, core::compile(box_scene));
   ASSERT_EQ(box["bodies"].size(), 1u);
   const auto& b = box["bodies"][0];
   EXPECT_EQ(b["name"], "box");
@@ -111,7 +112,8 @@ TEST(SceneRecord, BodiesAboutTheirCentreOfMassAndConstraints) {
   EXPECT_EQ(box["output_every"], 0.01);
   EXPECT_EQ(box["check"]["baseline_tolerance"], 1e-9);  // CheckSpec's default
 
-  const auto pendulum = scene_json(core::load_scene(kScenes + "pendulum.json"));
+  const auto pendulum_scene = core::load_scene(kScenes + "pendulum.json");
+  const auto pendulum = scene_json(pendulum_scene, core::compile(pendulum_scene));
   EXPECT_EQ(pendulum["particles"], nlohmann::ordered_json::array({"bob"}));
   ASSERT_EQ(pendulum["constraints"].size(), 1u);
   const auto& c = pendulum["constraints"][0];

@@ -3,7 +3,7 @@
 // that coincide are said to; the stage bars carry min–max error bars.
 #include "compare/plot.hpp"
 #include "compare/report.hpp"
-#include "core/scene.hpp"
+#include "core/model/scene.hpp"
 
 #include <gtest/gtest.h>
 

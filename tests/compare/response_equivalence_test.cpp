@@ -1,10 +1,10 @@
-// Both backends through the collision scenes of issue #7: the same contacts
+// Both backends through the collision scenes: the same contacts
 // (equal contact and search counters) and the same trajectories, within 1e-6 m over the
 // whole run (the scenes are not chaotic: the backends differ by rounding,
 // measured 1e-15 to 1e-8 m). The 27 bodies in a box are chaotic: they are
 // compared over the first half second only (2.4e-7 m measured).
 #include "cga/backend.hpp"
-#include "core/simulator.hpp"
+#include "core/dynamics/simulator.hpp"
 #include "traditional/backend.hpp"
 
 #include <gtest/gtest.h>

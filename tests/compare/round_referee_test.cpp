@@ -1,4 +1,4 @@
-// Round pairs (issue #17, core/round.hpp) of both backends against the
+// Round pairs (core/collision/round.hpp) of both backends against the
 // referees' own sphere primitives (fcl::Sphered, btSphereShape;
 // compare/referee.hpp) on data/collision/round.json, outside the touching band:
 //   - Bullet (GJK on the sphere's centre, its radius added back as the margin;
@@ -12,14 +12,14 @@
 //     1e-6). So FCL's distance is checked as that: an upper bound of ours
 //     (1e-9 × scale below for rounding), at most 1e-4 × scale above. Its
 //     penetration depth is MPR's, not the minimum, and is not compared.
-// Capsules (core/capsule.hpp) the same way on data/collision/capsule.json
+// Capsules (core/collision/capsule.hpp) the same way on data/collision/capsule.json
 // against fcl::Capsuled and btCapsuleShapeZ (GJK on the segment, its radius
 // the margin), to the same tolerances: measured 8.2e-14 × scale and
 // 1.5e-12 rad against Bullet at worst, FCL's distance 0 to 4.1e-6 × scale
 // above ours. And the two backends against each other on every capsule pair.
 #include "cga/narrowphase.hpp"
 #include "compare/referee.hpp"
-#include "core/collision_cases.hpp"
+#include "answers/collision_cases.hpp"
 #include "traditional/narrowphase.hpp"
 
 #include <gtest/gtest.h>
@@ -77,7 +77,7 @@ TEST(RoundReferee, BothBackendsAgreeWithBulletAndFcl) {
   EXPECT_GE(expect_referees_agree("round.json", 1e-11, 1e-9, 1e-4), 85);
 }
 
-// Capsules (core/capsule.hpp) against fcl::Capsuled and btCapsuleShapeZ.
+// Capsules (core/collision/capsule.hpp) against fcl::Capsuled and btCapsuleShapeZ.
 TEST(CapsuleReferee, BothBackendsAgreeWithBulletAndFcl) {
   EXPECT_GE(expect_referees_agree("capsule.json", 1e-11, 1e-9, 1e-4), 100);
 }

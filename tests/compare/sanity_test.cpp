@@ -5,8 +5,8 @@
 #include "compare/machine.hpp"
 #include "compare/report.hpp"
 #include "compare/sanity.hpp"
-#include "core/invariants.hpp"
-#include "core/rigid_body.hpp"
+#include "core/dynamics/invariants.hpp"
+#include "core/dynamics/rigid_body.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -49,13 +49,13 @@ struct State {
 using Motion = std::function<State(std::size_t body, double t)>;
 
 // A run sampled every kDt over [0, duration], energies filled by the code the
-// backends use (core/invariants.hpp); static bodies stay where the scene puts them.
+// backends use (core/dynamics/invariants.hpp); static bodies stay where the scene puts them.
 core::Run make_run(const core::Scene& scene, double duration, const Motion& motion,
                    const std::string& backend = "traditional") {
   core::Run run;
   run.backend = backend;
   run.counters["unresolved_impacts"] = 0;
-  const auto props = core::body_properties(scene);
+  const core::Model model = core::compile(scene);
   const int n = static_cast<int>(std::lround(duration / kDt));
   for (int k = 0; k <= n; ++k) {
     core::Sample s;
@@ -70,7 +70,7 @@ core::Run make_run(const core::Scene& scene, double duration, const Motion& moti
       }
       s.bodies.push_back(bs);
     }
-    core::fill_invariants(scene, props, s);
+    core::fill_invariants(scene, model, s);
     run.samples.push_back(s);
   }
   return run;
@@ -94,7 +94,7 @@ TEST(Sanity, ACleanRunPassesEveryRule) {
   const auto scene = slab_scene();
   const auto run = make_run(scene, 1.0, [](std::size_t, double t) { return sliding(t); });
   const auto lines = compare::sanity_checks(scene, run);
-  ASSERT_EQ(lines.size(), 5u);
+  ASSERT_EQ(lines.size(), 6u);
   for (const auto& l : lines) EXPECT_TRUE(passes(l)) << l.what << ": " << l.note;
   EXPECT_NEAR(find(lines, "sanity: penetration").value, 5e-5, 1e-12);
   EXPECT_NE(find(lines, "sanity: lateral drift").note.find("1 stretch"), std::string::npos);
@@ -179,7 +179,7 @@ TEST(Sanity, ABodyUnderTheSlabFails) {
 }
 
 // A round body is judged by its own surface, not by the polyhedron inscribed
-// in it (core/mesh.hpp: the proxy's 26 vertices lie on the sphere, so between
+// in it (core/model/mesh.hpp: the proxy's 26 vertices lie on the sphere, so between
 // them the sphere reaches further, by up to r (1 − cos 27.3°) = 11 mm for
 // r = 0.1 m): a ball turned so that its body direction farthest from every
 // proxy vertex points down, 5 mm into the slab (50 tolerances, the proxy's
@@ -248,7 +248,7 @@ TEST(Sanity, SlidingDownASlopeIsNotDrift) {
   EXPECT_EQ(compare::lateral_drift_checks(scene, run)[0].verdict, CheckLine::Verdict::info);
 }
 
-// Friction (issue #17) slows a sliding body on a level floor: rule 3 leaves
+// Friction slows a sliding body on a level floor: rule 3 leaves
 // the pair out. The same run without friction fails it.
 TEST(Sanity, SlowingByFrictionIsNotDrift) {
   auto scene = slab_scene();
@@ -276,6 +276,55 @@ TEST(Sanity, BouncingOffAWallIsNotDrift) {
   EXPECT_NE(lines[0].note.find("2 stretch"), std::string::npos) << lines[0].note;  // before and after the wall
 }
 
+// Rule 5. The cube slower than the resting speed (0.064 m/s here) and
+// speeding up steadily at 1e-3 m/s² for 2 s, as the top of a tilted column
+// did: the rise over a second (1e-3 m/s) is ten times the bound.
+TEST(Sanity, ARestingBodyThatKeepsSpeedingUpFails) {
+  const auto scene = slab_scene();
+  const double a = 1e-3;
+  const auto run = make_run(scene, 2.0, [&](std::size_t, double t) {
+    return State{{0.5 * a * t * t, 0, 0.1 - 5e-5}, {a * t, 0, 0}};
+  });
+  const CheckLine l = compare::resting_acceleration_check(scene, run);
+  EXPECT_TRUE(fails(l)) << l.note;
+  EXPECT_NEAR(l.value, a * 1.0, 0.05 * a);  // one second's rise
+  EXPECT_NE(l.note.find("cube"), std::string::npos) << l.note;
+}
+
+// Sliding at a constant 1 mm/s, or nudged once to 0.5 mm/s and sliding on:
+// no second of steady speeding up, so no failure.
+TEST(Sanity, SlidingOnOrANudgeIsNotASpeedUp) {
+  const auto scene = slab_scene();
+  const auto steady = make_run(scene, 2.0, [](std::size_t, double t) { return State{{1e-3 * t, 0, 0.1 - 5e-5}, {1e-3, 0, 0}}; });
+  EXPECT_TRUE(passes(compare::resting_acceleration_check(scene, steady)));
+  const auto nudged = make_run(scene, 2.0, [](std::size_t, double t) {
+    const double v = t < 0.5 ? 0.0 : 5e-4;
+    return State{{v * (t - 0.5), 0, 0.1 - 5e-5}, {v, 0, 0}};
+  });
+  const CheckLine l = compare::resting_acceleration_check(scene, nudged);
+  EXPECT_TRUE(passes(l)) << l.value << " " << l.note;
+}
+
+// The same steady speed-up while a second cube moves faster than v_rest: the
+// scene is not at rest (a neighbour may be pushing), so the rule holds back;
+// once the second cube is at rest too, the speed-up fails again.
+TEST(Sanity, ASpeedUpCountsOnlyWhileTheWholeSceneRests) {
+  auto scene = slab_scene();
+  scene.bodies.push_back(box("other", {0.2, 0.2, 0.2}, 1, {1, 0, 0.1}));
+  const double a = 1e-3;
+  const auto with_other = [&](double other_speed) {
+    return make_run(scene, 2.0, [&, other_speed](std::size_t b, double t) {
+      if (b == 2) return State{{1 + other_speed * t, 0, 0.1 - 5e-5}, {other_speed, 0, 0}};
+      return State{{0.5 * a * t * t, 0, 0.1 - 5e-5}, {a * t, 0, 0}};
+    });
+  };
+  const double v_rest = core::compile(scene).resting_speed;
+  const CheckLine moving = compare::resting_acceleration_check(scene, with_other(2 * v_rest));
+  EXPECT_TRUE(passes(moving)) << moving.value << " " << moving.note;
+  const CheckLine resting = compare::resting_acceleration_check(scene, with_other(0));
+  EXPECT_TRUE(fails(resting)) << resting.note;
+}
+
 TEST(Sanity, UnresolvedImpactsFailAndAnAbsentCounterIsNotMeasured) {
   const auto scene = slab_scene();
   auto run = make_run(scene, 0.1, [](std::size_t, double t) { return sliding(t); });
@@ -288,6 +337,30 @@ TEST(Sanity, UnresolvedImpactsFailAndAnAbsentCounterIsNotMeasured) {
   EXPECT_EQ(compare::unresolved_impacts_check(scene, run).verdict, CheckLine::Verdict::info);
 }
 
+// A scene's stated rest positions (check.rest): check fails on a body farther
+// than the tolerance from its rest after the time given, and only there.
+TEST(Sanity, CheckHoldsBodiesToTheRestTheSceneStates) {
+  auto scene = slab_scene();
+  scene.check.rest = {{"cube", Vec3(0, 0, 0.1)}};
+  scene.check.rest_after = 0.5;
+  scene.check.rest_tolerance = 1e-3;
+  const auto check = [&](const Motion& m) {
+    compare::SceneResult r{scene, {}, std::make_shared<const core::Model>(core::compile(scene))};
+    r.backends.push_back({make_run(scene, 1.0, m), {{}}, {1.0}, true});
+    return find(compare::check_scene(r, std::nullopt), "rest of cube");
+  };
+  // Sinking 5e-5 and falling in from 1 cm above before 0.5 s: at rest in time.
+  const CheckLine settled = check([](std::size_t, double t) {
+    return State{{0, 0, 0.1 - 5e-5 + (t < 0.4 ? 0.01 : 0.0)}, {0, 0, 0}};
+  });
+  EXPECT_TRUE(passes(settled)) << settled.value;
+  EXPECT_NEAR(settled.value, 5e-5, 1e-12);
+  // Sliding off at 1 cm/s: 5 mm away by the end.
+  const CheckLine slid = check([](std::size_t, double t) { return State{{0.01 * t, 0, 0.1}, {0.01, 0, 0}}; });
+  EXPECT_TRUE(fails(slid));
+  EXPECT_NEAR(slid.value, 0.01, 1e-12);
+}
+
 TEST(Sanity, CheckFailsOnASanityRuleAndCarriesABulletRun) {
   const auto scene = slab_scene();
   const Motion lifted = [](std::size_t, double t) {
@@ -295,7 +368,7 @@ TEST(Sanity, CheckFailsOnASanityRuleAndCarriesABulletRun) {
     if (t > 0.5 - 1e-9) s.x.z() += 5e-3;
     return s;
   };
-  compare::SceneResult r{scene, {}};
+  compare::SceneResult r{scene, {}, std::make_shared<const core::Model>(core::compile(scene))};
   for (const char* b : {"traditional", "cga"}) r.backends.push_back({make_run(scene, 1.0, lifted, b), {{}}, {1.0}, true});
   auto bullet = make_run(scene, 1.0, [](std::size_t, double t) { return State{{0.3, 0.1 * t, 0.1}, {0, 0.1, 0}}; }, "bullet");
   bullet.counters.clear();  // Bullet publishes no unresolved_impacts

@@ -235,3 +235,17 @@ TEST(BootstrapUnpairedRatio, OneRepeatHasNoInterval) {
   EXPECT_TRUE(std::isnan(r.lo));
   EXPECT_EQ(speed_verdict(r), Speed::unknown);
 }
+
+// The bootstrap's linear-time median is the sorted median, bit for bit: odd and
+// even counts, ties, and values whose mean of the middle two rounds.
+TEST(MedianInPlace, IsTheSortedMedian) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (std::size_t n = 1; n <= 64; ++n)
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<double> v(n);
+      for (auto& x : v) x = trial % 4 == 0 ? std::floor(4 * u(rng)) : u(rng) * 1e-3;  // every 4th: many ties
+      std::vector<double> w = v;
+      EXPECT_EQ(median_in_place(w), spread(v).median) << n << " values, trial " << trial;
+    }
+}

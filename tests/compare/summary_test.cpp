@@ -65,7 +65,9 @@ TEST(Summary, ToleranceUsedBoundsPositionsAndOrientationsAsCheckDoes) {
   box.shape = core::BoxShape{{2, 2, 2}};
   slab.shape = core::BoxShape{{4, 4, 1}};
   slab.is_static = true;
+  box.mass = slab.mass = 1;
   r.scene.bodies = {box, slab};
+  r.model = std::make_shared<const core::Model>(core::compile(r.scene));
   core::Sample a;
   a.particles.resize(1);
   a.bodies.resize(2);

@@ -1,4 +1,4 @@
-// The issue #4 validation problems through the traditional backend.
+// The particle validation problems through the traditional backend.
 #include "traditional/backend.hpp"
 #include "../dynamics_cases.hpp"
 

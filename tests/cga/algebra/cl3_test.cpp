@@ -41,8 +41,8 @@ TEST(Cl3, RotorSandwichMatchesQuaternionAndMatrix) {
 
 // A drifted rotor (|R| from 0.5 to 2) still gives an exact rotation: the
 // homogeneous matrix over R R̃ equals the sandwich of R/|R|, and its bivector
-// twin equals the sandwich of each basis bivector (issue #13: one pose policy
-// for quaternion and rotor; the response's S without three sandwiches).
+// twin equals the sandwich of each basis bivector (one pose policy for
+// quaternion and rotor; the response's S without three sandwiches).
 TEST(Cl3, RotationMatricesOfADriftedRotorMatchTheSandwich) {
   for (int k = 0; k < 1000; ++k) {
     const auto unit = rotor_from_quaternion(random_quaternion());

@@ -40,7 +40,7 @@ namespace gacompare::geometry::testing {
 using Vec3 = Eigen::Vector3d;
 inline constexpr double kEps = std::numeric_limits<double>::epsilon();
 inline constexpr double kC = 256;
-// ≥ 10,000 random cases per operation (issue 3), near-degenerate ones on top.
+// ≥ 10,000 random cases per operation, near-degenerate ones on top.
 // A draw a test rejects (features closer than ℓ = 0.1) is redrawn (`--k`), so
 // every loop compares kCases accepted cases.
 inline constexpr int kCases = 10000;

@@ -1,0 +1,119 @@
+// The stacking table (docs/results/stacking.md): every case of the stacking
+// family (answers/stacking_family.hpp) through the contact solvers of our two
+// backends and through Bullet, each held to its statics answer for its 10
+// simulated seconds. A cell is "pass" or "FAIL" with the worst error as a
+// multiple of its bound (≤ 1 passes) and the run's wall time per simulated
+// second; the reasons for the failures follow the table, with the cases the
+// tests know to be open (StackCase::open) saying why. Markdown on stdout,
+// progress on stderr.
+//
+//   build/ci/bench/stacking_table [--filter TEXT] [--columns traditional,cga,bullet,traditional-pgs,cga-pgs]
+//
+// Default columns: traditional, cga, bullet. A column is a backend with the
+// family's default contact solver (direct),
+// a backend with projected Gauss–Seidel (NAME-pgs), or Bullet (its own
+// sequential impulses, 10 iterations, split impulse).
+#include "answers/stacking_family.hpp"
+#include "cga/backend.hpp"
+#include "compare/bullet_world.hpp"
+#include "core/dynamics/simulator.hpp"
+#include "core/error.hpp"
+#include "traditional/backend.hpp"
+
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace gacompare;
+
+namespace {
+
+core::Run run(const std::string& column, const core::Scene& scene) {
+  if (column.starts_with("traditional")) return core::simulate<traditional::Backend>(scene);
+  if (column.starts_with("cga")) return core::simulate<cga::Backend>(scene);
+  return compare::simulate_bullet(scene);
+}
+
+core::ContactSolverMethod method_of(const std::string& column) {
+  return column.ends_with("-pgs") ? core::ContactSolverMethod::pgs : core::ContactSolverMethod::direct;
+}
+
+int usage() {
+  std::fprintf(stderr, "usage: stacking_table [--filter TEXT] [--columns traditional,cga,bullet,traditional-pgs,cga-pgs]\n");
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string filter, command = "stacking_table";
+  std::vector<std::string> columns{"traditional", "cga", "bullet"};
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (i + 1 >= argc) return usage();
+    const std::string value = argv[++i];
+    command += " " + arg + " " + value;
+    if (arg == "--filter") {
+      filter = value;
+    } else if (arg == "--columns") {
+      columns.clear();
+      std::stringstream list(value);
+      for (std::string c; std::getline(list, c, ',');) {
+        if (c != "traditional" && c != "cga" && c != "bullet" && c != "traditional-pgs" && c != "cga-pgs") return usage();
+        columns.push_back(c);
+      }
+    } else {
+      return usage();
+    }
+  }
+  const auto direct = core::stacking_family(core::ContactSolverMethod::direct);
+  const auto pgs = core::stacking_family(core::ContactSolverMethod::pgs);
+
+  std::printf("Command: `build/ci/bench/%s`\n\n", command.c_str());
+  std::printf("Each cell: pass or FAIL, the worst error over its bound (≤ 1 passes), and the run's wall time per "
+              "simulated second.\n\n| case | bodies |");
+  for (const auto& c : columns) std::printf(" %s |", c.c_str());
+  std::printf("\n|---|---:|");
+  for (std::size_t k = 0; k < columns.size(); ++k) std::printf("---|");
+  std::printf("\n");
+  std::vector<std::string> failures;
+  std::map<std::string, int> passed;
+  std::map<std::string, double> wall;
+  int cases = 0;
+  for (std::size_t k = 0; k < direct.size(); ++k) {
+    const core::StackCase& base = direct[k];
+    if (base.name.find(filter) == std::string::npos) continue;
+    ++cases;
+    int moving = 0;
+    for (const auto& b : base.scene.bodies) moving += !b.is_static;
+    std::printf("| %s | %d |", base.name.c_str(), moving);
+    for (const auto& column : columns) {
+      const core::StackCase& c = method_of(column) == core::ContactSolverMethod::pgs ? pgs[k] : direct[k];
+      std::fprintf(stderr, "%s %s\n", c.name.c_str(), column.c_str());
+      core::StackVerdict v;
+      double seconds = 0;
+      try {
+        const core::Run r = run(column, c.scene);
+        seconds = r.wall_seconds;
+        v = c.evaluate(r);
+      } catch (const Error& e) {
+        v.pass = false, v.ratio = INFINITY, v.worst = std::string("refused: ") + e.what();
+      }
+      passed[column] += v.pass;
+      wall[column] += seconds;
+      std::printf(" %s %.2g, %.3g s |", v.pass ? "pass" : "FAIL", v.ratio, seconds / c.scene.duration);
+      if (!v.pass)
+        failures.push_back(c.name + " (" + column + "): " + v.worst + "; first: " + v.first_failure +
+                           (c.open.empty() || column == "bullet" ? "" : "; open: " + c.open));
+      std::fflush(stdout);
+    }
+    std::printf("\n");
+  }
+  std::printf("\nPassed:");
+  for (const auto& c : columns) std::printf(" %s %d/%d (%.1f s of runs);", c.c_str(), passed[c], cases, wall[c]);
+  std::printf("\n\nWhy each failure failed (the worst check, then the first):\n\n");
+  for (const auto& f : failures) std::printf("- %s\n", f.c_str());
+  return 0;
+}

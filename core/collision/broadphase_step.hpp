@@ -1,0 +1,136 @@
+#pragma once
+// The broadphase stage's driver: each body's pose once per detection, and
+// which pairs of a group go to the narrowphase — the method the scene names
+// (core/collision/broadphase.hpp) over the bounding spheres, or an island's
+// known candidates, less the pairs whose moving body misses a static body's
+// box. Members of the Collider (core/collision/collisions.hpp), defined here.
+#include "core/collision/collisions.hpp"
+
+namespace gacompare::core {
+
+template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
+requires collision::NarrowphaseBody<NarrowBody>
+auto Collider<Bodies, NarrowBody, Spheres>::poses(const Model& m, std::span<const double> y, BodyIndices group) const
+    -> std::vector<collision::Pose> {
+  std::vector<collision::Pose> out;
+  out.reserve(group.size());
+  for (std::size_t k = 0; k < group.size(); ++k) out.push_back(Bodies::pose(m, y, k));
+  return out;
+}
+
+template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
+requires collision::NarrowphaseBody<NarrowBody>
+auto Collider<Bodies, NarrowBody, Spheres>::placed(const std::vector<collision::Pose>& pose, BodyIndices group,
+                                                   int k) const -> collision::Placed {
+  return {setup.meshes[group[k]].get(), pose[k]};
+}
+
+template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
+requires collision::NarrowphaseBody<NarrowBody>
+auto Collider<Bodies, NarrowBody, Spheres>::detect(State& state, const Model& m, std::span<const double> y,
+                                                   BodyIndices group, std::span<const double> margin,
+                                                   Profile& profile) const -> Detection {
+  const std::size_t n = group.size();
+  Detection d;
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<collision::Pose> pose;
+  {
+    ScopedStage timed(profile, Stage::broadphase);
+    pose = poses(m, y, group);
+    // The method, the state it keeps and the frame the spheres are held in:
+    // core/collision/broadphase.hpp. Only the world keeps its broadphase between
+    // detections; another group without its candidates (detect_among) is
+    // swept afresh.
+    const std::vector<Vec3> centres = sphere_centres(pose, group);
+    std::vector<double> radii(n);
+    std::vector<char> fixed(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      radii[k] = setup.sphere_radius[group[k]];
+      fixed[k] = setup.is_static[group[k]];
+    }
+    BroadphaseResult found = group.data() == setup.all_bodies.data()
+                                 ? state.broadphase.find(centres, radii, fixed, margin)
+                                 : Broadphase<Spheres>(BroadphaseMethod::sweep).find(centres, radii, fixed, margin);
+    pairs = std::move(found.pairs);
+    d.candidates = std::move(found.candidates);
+    const auto away = [&](std::span<const double> grow) {
+      return [&, grow](const std::pair<int, int>& p) { return misses_static(pose, group, centres, p, grow); };
+    };
+    std::erase_if(pairs, away({}));
+    std::erase_if(d.candidates, away(margin));
+    state.counters.broadphase_candidates += static_cast<std::uint64_t>(found.counters.candidates);
+    state.counters.broadphase_tree_updates += static_cast<std::uint64_t>(found.counters.tree_updates);
+    state.counters.broadphase_pairs_kept += static_cast<std::uint64_t>(found.counters.pairs_kept);
+  }
+  narrow(state, group, pose, pairs, d, profile, margin);
+  return d;
+}
+
+template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
+requires collision::NarrowphaseBody<NarrowBody>
+auto Collider<Bodies, NarrowBody, Spheres>::detect_among(State& state, const Model& m, std::span<const double> y,
+                                                         BodyIndices group,
+                                                         std::span<const std::pair<int, int>> candidates,
+                                                         Profile& profile) const -> Detection {
+  const std::size_t n = group.size();
+  Detection d;
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<collision::Pose> pose;
+  {
+    ScopedStage timed(profile, Stage::broadphase);
+    pose = poses(m, y, group);
+    const std::vector<Vec3> centres = sphere_centres(pose, group);
+    Vec3 frame = Vec3::Zero();
+    for (const Vec3& c : centres) frame += c;
+    if (n > 0) frame /= static_cast<double>(n);
+    std::vector<typename Spheres::Sphere> spheres;
+    spheres.reserve(n);
+    for (std::size_t k = 0; k < n; ++k)
+      spheres.push_back(Spheres::sphere(centres[k] - frame, setup.sphere_radius[group[k]]));
+    for (const auto& p : candidates) {
+      const auto [i, j] = p;
+      ++state.counters.broadphase_candidates;
+      if (setup.is_static[group[i]] && setup.is_static[group[j]]) continue;
+      if (!Spheres::overlap(spheres[static_cast<std::size_t>(i)], spheres[static_cast<std::size_t>(j)])) continue;
+      if (misses_static(pose, group, centres, p, {})) continue;
+      pairs.emplace_back(i, j);
+    }
+  }
+  narrow(state, group, pose, pairs, d, profile);
+  return d;
+}
+
+template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
+requires collision::NarrowphaseBody<NarrowBody>
+auto Collider<Bodies, NarrowBody, Spheres>::misses_static(const std::vector<collision::Pose>& pose, BodyIndices group,
+                                                          const std::vector<Vec3>& centres,
+                                                          const std::pair<int, int>& p,
+                                                          std::span<const double> grow) const -> bool {
+  const auto [i, j] = p;
+  const bool si = setup.is_static[group[i]];
+  if (si == static_cast<bool>(setup.is_static[group[j]])) return false;
+  const int s = si ? i : j, o = si ? j : i;
+  const double r = setup.sphere_radius[group[o]] + (grow.empty() ? 0.0 : grow[o]);
+  return !reaches_static(pose[s], group[s], centres[o], r);
+}
+
+template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
+requires collision::NarrowphaseBody<NarrowBody>
+auto Collider<Bodies, NarrowBody, Spheres>::sphere_centres(const std::vector<collision::Pose>& pose,
+                                                           BodyIndices group) const -> std::vector<Vec3> {
+  std::vector<Vec3> c(group.size());
+  for (std::size_t k = 0; k < group.size(); ++k) c[k] = pose[k].apply(setup.sphere_centre[group[k]]);
+  return c;
+}
+
+template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
+requires collision::NarrowphaseBody<NarrowBody>
+auto Collider<Bodies, NarrowBody, Spheres>::reaches_static(const collision::Pose& pose, int s, const Vec3& c,
+                                                           double r) const -> bool {
+  const Vec3 q = pose.rotation.transpose() * (c - pose.position) - setup.static_mid[s];
+  const Vec3 h = setup.static_half[s];
+  const Vec3 out = (q.cwiseAbs() - h).cwiseMax(0.0);
+  const double pad = collision::kTouchingBand * (r + h.norm()) + 1e-14 * (c - pose.position).norm();
+  return out.squaredNorm() <= (r + pad) * (r + pad);
+}
+}  // namespace gacompare::core

@@ -1,0 +1,94 @@
+#pragma once
+// What the collision stages share, whatever the backend: the counters every
+// stage adds to, the setup built once from the scene (meshes centred on their
+// centres of mass, bounding spheres, inradii, materials) and one pair in
+// contact as the narrowphase hands it to the contact solver.
+#include "core/collision/collision.hpp"
+#include "core/model/model.hpp"
+#include "core/model/scene.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gacompare::core {
+
+struct CollisionCounters {
+  std::uint64_t steps = 0, shortened_steps = 0, broadphase_candidates = 0, narrowphase_pairs = 0;
+  std::uint64_t broadphase_tree_updates = 0, broadphase_pairs_kept = 0;  // summed over detections
+  std::uint64_t impact_searches = 0, impact_iterations = 0, impact_evaluations = 0, unresolved_searches = 0;
+  std::uint64_t impact_interpolations = 0, impact_interpolation_misses = 0;  // impact_motion "interpolate"
+  // Bodies integrated by the searches' trials (the deep pairs' bodies, or an
+  // island when the pairs' time missed the band on the island's motion).
+  std::uint64_t impact_bodies_integrated = 0, impact_island_misses = 0;
+  std::uint64_t contacts = 0, impulses = 0, resting_contacts = 0, sweeps = 0, corrections = 0;
+  std::uint64_t warm_started = 0, sweep_cap_hits = 0, correction_cap_hits = 0, unresolved_impacts = 0;
+  // Islands (core/collision/islands.hpp, core/collision/collision_step.hpp): the islands with a
+  // candidate pair, those stepped on their own (a pair too deep or a step
+  // too long for them), the bodies those held (each re-integrated from the
+  // step's start) and the largest island seen.
+  std::uint64_t islands = 0, local_islands = 0, local_island_bodies = 0, largest_island = 0, local_steps = 0;
+  std::uint64_t island_narrowphase_pairs = 0;  // of narrowphase_pairs, those tested in islands' sub-steps
+  std::uint64_t links_apart = 0;  // candidate pairs unlinked: apart by more than their reach (collision_step.hpp)
+  std::uint64_t links_face_tested = 0;  // of the pairs apart, those whose link every face normal decided
+  std::uint64_t narrowphase_shapes = 0, narrowphase_axes_kept = 0;  // bodies' geometry built; pairs their last axis decided
+  // Friction: the contacts given friction rows, those whose
+  // friction ended on the cone (sliding) and the friction rows warm started.
+  std::uint64_t friction_contacts = 0, sliding_contacts = 0, friction_warm_started = 0;
+  // The contact solver's work: solves (velocity and correction), the direct
+  // solver's active-set changes, factorisations, friction-bound rounds and
+  // solves it left unsolved (the sweeps then finish them), and how many
+  // sweeps each solve took: sweep_histogram[k] counts solves of 2^k to
+  // 2^(k+1) − 1 sweeps (the last bucket: the cap).
+  std::uint64_t solves = 0, direct_pivots = 0, direct_factorisations = 0, direct_rounds = 0, direct_unsolved = 0;
+  std::uint64_t projections_refused = 0;  // the direct solver's position projections dropped (contact_solver.hpp)
+  std::array<std::uint64_t, 11> sweep_histogram{};
+  // The velocity residual at each velocity solve's exit (m/s: the largest
+  // change of the last sweep), by decade: residual_histogram[k] counts those
+  // in [1e-(k+1), 1e-k) m/s, [0] those ≥ 1e-1 and the last those < 1e-15.
+  std::array<std::uint64_t, 16> residual_histogram{};
+  void add_sweeps(int sweeps);
+  void add_residual(double residual);
+  void add_to(std::map<std::string, std::uint64_t>& out) const;
+};
+
+// The backend-neutral part, built once: each body's mesh with its centre of mass
+// at the origin, its bounding sphere in body coordinates, inradius, restitution.
+struct CollisionSetup {
+  Collisions settings;
+  std::vector<std::string> names;
+  std::vector<std::shared_ptr<const Mesh>> meshes;
+  std::vector<Vec3> sphere_centre;  // body frame
+  std::vector<double> sphere_radius, inradius, restitution;
+  std::vector<double> friction;  // each body's μ (core/model/scene.hpp Body::friction)
+  std::vector<char> is_static;
+  // A static body's box in its own frame (the mesh's bounding box, centre and
+  // half sides): the broadphase's spheres are loose about a slab or a wall, so
+  // a pair with a static body is kept only where the other body's sphere
+  // reaches this box (Collider::reaches_static).
+  std::vector<Vec3> static_mid, static_half;
+  std::vector<int> all_bodies;  // 0 … n − 1: the world as a group (see Collider)
+  SolverSpec solver;          // the scene's: an island is integrated alone with it
+  double gravity = 0;       // |g|
+  double resting_speed = 0;  // v_rest above
+  double min_inradius = 0;
+};
+
+// The compiled model's meshes, inradii and materials, as the collision stages
+// index them (throws input_error for a non-convex body). The bounding spheres
+// are filled by Collider::build (per backend).
+CollisionSetup collision_setup(const Scene& scene, const Model& model);
+
+// One pair in contact: the separating-axis answer and the report's contacts.
+// a and b are the bodies' indices in the group detected (see Collider).
+struct PairHit {
+  int a = 0, b = 0;
+  collision::PairContact sat;
+  std::vector<collision::FeatureContact> features;
+};
+
+}  // namespace gacompare::core

@@ -1,0 +1,276 @@
+#pragma once
+// One collision step, island by island (§2.5.1 and fig. 11 of the
+// report, localised). The simulation loop (core/dynamics/simulation.hpp) integrates the
+// whole world from the accepted state (t0, y0) to t1 = t0 + step; then:
+//
+//   1. Detection at t1 with every moving body's bounding sphere grown by how
+//      far the body can move in the step (Collider::reach): the grown spheres'
+//      overlaps are the candidates, the narrowphase tests the pairs whose own
+//      spheres overlap.
+//   2. Islands: the connected components of the moving bodies under the
+//      candidate pairs, less those the narrowphase found farther apart than
+//      both bodies can move (unlink_far; core/collision/islands.hpp). Bodies of
+//      different islands cannot meet in this step, so each island is resolved
+//      on its own.
+//   3. An island whose contacts are all within the penetration tolerance, and
+//      whose bodies move little enough in the step, responds at t1 (its own
+//      contact solve, Collider::respond).
+//   4. An island with a pair deeper than the tolerance, or with a body that
+//      could move more than half the smallest inradius in the step (it could
+//      pass through a thin body), is stepped alone from y0: its bodies only,
+//      as a sub-model integrated with the scene's solver, in sub-steps short
+//      enough for its fastest body, each followed by a detection among its
+//      bodies, a time-of-impact search when a pair went too deep (bisection or
+//      Illinois, rewinding and re-integrating the island only) and its
+//      response; then its state at t1 replaces the world's.
+//
+// What this changes against the report's loop, which ended every body's step
+// at the first time of impact anywhere and rewound the whole world for every
+// trial time: the time grid. Every island meets the world at every t1; an
+// island's impacts split its own step only. A scene of one island (one body on
+// a floor, two bodies meeting) takes the same impacts at the same times as
+// before; after an impact at t* it continues to t1 (before: to t* + step).
+// What it assumes: bodies interact only through contacts (gravity, drag and
+// applied forces act on each body alone, and particles never touch bodies),
+// so an island's motion is independent of every other body's within the step.
+// What it cannot see: an island's bodies leaving the reach they had at t0 (an
+// impulse can make a body faster than it was) and meeting, before t1, a body
+// they were not linked to (of another island, or of their own: within its
+// step an island tests only its candidate pairs, not a fresh broadphase);
+// that pair is found at t1, deeper than the tolerance, and the next step
+// resolves it like any pair already too deep at its start. Growing the links
+// to twice the reach, which would cover a body sent back as fast as it came,
+// made islands larger and runs slower with the same impacts, so the links are
+// the reach.
+#include "core/collision/collisions.hpp"
+#include "core/collision/islands.hpp"
+#include "core/collision/subsystem.hpp"
+#include "core/collision/time_of_impact_step.hpp"
+#include "core/dynamics/ode.hpp"
+#include "core/dynamics/simulator.hpp"
+#include "core/collision/time_of_impact.hpp"
+
+#include <algorithm>
+#include <sstream>
+#include <vector>
+
+namespace gacompare::core {
+
+// Sub-steps of one island in one collision step: a safety stop (a body so
+// fast that its step limit makes no progress), reported as a run error.
+inline constexpr int kMaxIslandSteps = 1000000;
+// The shortest sub-step, relative to the collision step: a body that needs a
+// million sub-steps per step (5e4 m/s for a 0.1 m body at a 1 ms step) is not
+// a simulation that will finish; it stops with a run error naming it. The
+// bound also keeps the grown bounding spheres within what the conformal
+// sphere test resolves: a sphere grown to 1e9 m beside a 1 m one carries
+// ½ρ² ≈ 5e17 next to the pair's ~1 m², and cga then missed the pair.
+inline constexpr double kLeastSubStep = 1e-6;
+
+template <class C>
+class CollisionStep {
+ public:
+  using Bodies = typename C::BodiesType;
+  using Model = typename C::Model;
+
+  using State = typename C::State;
+
+  // The collider and model (read-only) and the run's state of the collision stages (the step context).
+  CollisionStep(const C& c, const Model& m, State& state) : c_(c), m_(m), s_(state) {}
+
+  // Resolves the collisions of the step (t0, t1]: y holds every body's state
+  // at t1 from the world's integration, y0 the accepted state at t0; on
+  // return y holds the step's result at t1.
+  void resolve(std::span<double> y, std::span<const double> y0, double t0, double t1, Profile& profile) const {
+    const auto& setup = c_.setup;
+    const std::size_t n = setup.all_bodies.size();
+    const double h = t1 - t0;
+    c_.forget_old_contacts(s_);
+    std::vector<double> margin(n);
+    const double farthest = 0.5 * setup.min_inradius / kLeastSubStep;  // the most a body may move in one step
+    for (std::size_t k = 0; k < n; ++k) {
+      margin[k] = c_.reach(m_, y0, setup.all_bodies, k, h);
+      if (!(margin[k] <= farthest)) fail_too_fast(k, margin[k], t0, h);
+    }
+    Detection d = c_.detect(s_, m_, y, setup.all_bodies, margin, profile);
+    unlink_far(d);
+    if (d.candidates.empty()) return;
+    const std::vector<Island> islands = islands_of(n, setup.is_static, d.candidates);
+    // Each hit to the island of its moving body.
+    std::vector<int> island_of(n, -1);
+    for (std::size_t k = 0; k < islands.size(); ++k)
+      for (std::size_t i = 0; i < islands[k].moving; ++i) island_of[islands[k].bodies[i]] = static_cast<int>(k);
+    std::vector<std::vector<PairHit>> hits(islands.size());
+    for (auto& hit : d.hits) {
+      const int mover = setup.is_static[hit.a] ? hit.b : hit.a;
+      hits[island_of[mover]].push_back(std::move(hit));
+    }
+    const double tol = setup.settings.penetration_tolerance;
+    for (std::size_t k = 0; k < islands.size(); ++k) {
+      const Island& is = islands[k];
+      s_.counters.islands += 1;
+      s_.counters.largest_island = std::max<std::uint64_t>(s_.counters.largest_island, is.moving);
+      double deepest = -INFINITY;
+      for (const auto& hit : hits[k]) deepest = std::max(deepest, hit.sat.depth);
+      double most = 0;  // the island's longest reach in the step
+      for (std::size_t i = 0; i < is.moving; ++i) most = std::max(most, margin[is.bodies[i]]);
+      if (deepest <= tol && most <= 0.5 * setup.min_inradius) {
+        if (!hits[k].empty()) c_.respond(s_, m_, y, setup.all_bodies, hits[k], h, profile);
+        continue;
+      }
+      step_alone(is, d.candidates, hits[k], y, y0, t0, t1, profile);
+    }
+  }
+
+ private:
+  const C& c_;
+  const Model& m_;
+  State& s_;
+
+  // Links by distance, not by bounding spheres: a candidate pair the
+  // narrowphase found apart at t1 by a gap g (a lower bound of the distance)
+  // is at distance ≥ g − reach_a − reach_b at every time of the step, since
+  // no point of either body moves farther than its reach between then and
+  // t1. When that is positive (beyond the touching band, within which a pair
+  // counts as touching) the pair cannot touch in the step: it links nothing
+  // and is not among its island's pairs (Collider::note_apart keeps those in
+  // Detection::apart, judged by the gaps along the face normals: a bound that
+  // does not depend on which axis the pair remembers). Bounding spheres are
+  // loose (a tetrahedron fills a small part of its sphere), and in a dense
+  // scene their grown overlaps chain islands of thousands of bodies whose
+  // every impact re-detects all their pairs.
+  void unlink_far(Detection& d) const {
+    if (d.apart.empty()) return;
+    std::vector<std::pair<int, int>> far = std::move(d.apart);
+    std::sort(far.begin(), far.end());
+    s_.counters.links_apart += far.size();
+    std::erase_if(d.candidates, [&](const std::pair<int, int>& p) { return std::binary_search(far.begin(), far.end(), p); });
+  }
+
+  void fail_if_nonfinite(const Subsystem<Bodies>& a, const std::vector<double>& ys, const char* stage, double t) const {
+    const std::string bad = first_nonfinite(ys, a.stride, a.model.names, "body");
+    if (bad.empty()) return;
+    std::ostringstream msg;
+    msg << "non-finite state: " << bad << ", stage " << stage << ", at t=" << t;
+    throw run_error(msg.str());
+  }
+
+  // Step 4 above: the island from (t0, y0) to t1 in sub-steps of its own.
+  void step_alone(const Island& is, const std::vector<std::pair<int, int>>& candidates, std::vector<PairHit>& at_t1,
+                  std::span<double> y, std::span<const double> y0, double t0, double t1, Profile& profile) const {
+    const auto& setup = c_.setup;
+    const std::size_t stride = Bodies::state_size(m_) / setup.all_bodies.size();
+    Subsystem<Bodies> a(m_, is.bodies, stride, setup.solver);
+    ++s_.counters.local_islands;
+    s_.counters.local_island_bodies += is.moving;
+    std::vector<double> ys = a.gather(y0), yb;
+    // The island's candidate pairs in its own numbering: within the step its
+    // bodies can meet only each other and the static bodies they link to.
+    std::vector<std::pair<int, int>> among;
+    among.reserve(is.pairs.size());
+    const auto local = [&](int w) {
+      const auto movers = is.bodies.begin() + static_cast<long>(is.moving);
+      const auto at = std::lower_bound(is.bodies.begin(), movers, w);
+      return static_cast<int>((at != movers && *at == w ? at : std::lower_bound(movers, is.bodies.end(), w)) -
+                              is.bodies.begin());
+    };
+    for (const std::size_t k : is.pairs) {
+      const int i = local(candidates[k].first), j = local(candidates[k].second);
+      among.emplace_back(std::min(i, j), std::max(i, j));
+    }
+    // In the order a broadphase gives its pairs, so the contacts are solved
+    // in the same order as if the island had been swept afresh.
+    std::sort(among.begin(), among.end());
+    const double tol = setup.settings.penetration_tolerance;
+    double t = t0;
+    bool at_start = true;  // the world's integration already reached t1 from here
+    for (int step = 0; t < t1; ++step) {
+      if (step == kMaxIslandSteps) fail_stalled(a, ys, t, "the island took " + std::to_string(step) + " sub-steps");
+      double h = t1 - t;
+      const double limited = c_.step_limit(a.model, ys, a.group, h);
+      if (limited < h) h = limited, ++s_.counters.shortened_steps;
+      const double tb = t1 - (t + h) <= 1e-9 * h ? t1 : t + h;
+      if (!(tb > t) || h < kLeastSubStep * setup.settings.step)
+        fail_stalled(a, ys, t, "its step limit " + fmt(h) + " s is below " + fmt(kLeastSubStep) + " of the collision step");
+      ++s_.counters.local_steps;
+      yb = ys;
+      Detection d;
+      if (at_start && tb == t1) {
+        ys = a.gather(y);
+        fail_if_nonfinite(a, ys, "integrate", tb);
+        d = world_hits(at_t1, among, local);
+      } else {
+        a.integrate(t, tb, ys, profile);
+        fail_if_nonfinite(a, ys, "integrate", tb);
+        d = c_.detect_among(s_, a.model, ys, a.group, among, profile);
+      }
+      at_start = false;
+      double accepted = tb;
+      if (d.max_depth > tol) {
+        accepted = TimeOfImpactStep<C>(c_, s_).find(a, d, t, yb, tb, ys, profile);
+        fail_if_nonfinite(a, ys, "time_of_impact", accepted);
+        d = c_.detect_among(s_, a.model, ys, a.group, among, profile);
+      }
+      if (!d.hits.empty()) {
+        c_.respond(s_, a.model, ys, a.group, d.hits, accepted - t, profile);
+        fail_if_nonfinite(a, ys, "response", accepted);
+      }
+      t = accepted;
+    }
+    a.scatter(ys, y);
+  }
+
+  // The island's hits at t1 from the world's detection, in its own numbering
+  // and in the order its own detection would give them (its pairs', sorted):
+  // the world's state at t1 is the island's first sub-step's when that ends
+  // at t1, so detecting again would find the same hits (a pair in contact
+  // gets its answer from scratch, whatever axis it remembers).
+  template <class Local>
+  static Detection world_hits(std::vector<PairHit>& hits, const std::vector<std::pair<int, int>>& among, Local&& local) {
+    std::vector<std::pair<int, int>> order;  // (position in among, hit): every hit is one of the island's pairs
+    for (std::size_t k = 0; k < hits.size(); ++k) {
+      const int i = local(hits[k].a), j = local(hits[k].b);
+      const auto at = std::lower_bound(among.begin(), among.end(), std::pair(std::min(i, j), std::max(i, j)));
+      order.emplace_back(static_cast<int>(at - among.begin()), static_cast<int>(k));
+    }
+    std::sort(order.begin(), order.end());
+    Detection d;
+    for (const auto& [at, k] : order) {
+      PairHit h = std::move(hits[static_cast<std::size_t>(k)]);
+      h.a = local(h.a), h.b = local(h.b);  // world order kept: a's world index below b's, as the narrowphase puts it
+      d.max_depth = std::max(d.max_depth, h.sat.depth);
+      d.hits.push_back(std::move(h));
+    }
+    return d;
+  }
+
+  [[noreturn]] void fail_too_fast(std::size_t k, double reach, double t0, double h) const {
+    std::ostringstream msg;
+    msg << "collisions: no progress at t=" << t0 << ": body '" << m_.names[k] << "' can move " << reach
+        << " m in one collision step of " << h << " s, more than " << 1 / kLeastSubStep
+        << " sub-steps of half the smallest inradius (stage time_of_impact)";
+    throw run_error(msg.str());
+  }
+  [[noreturn]] void fail_stalled(const Subsystem<Bodies>& a, const std::vector<double>& ys, double t, const std::string& why) const {
+    // Name the fastest body: it sets the step limit.
+    std::size_t fastest = 0;
+    double most = -1;
+    for (std::size_t k = 0; k < a.group.size(); ++k) {
+      if (c_.setup.is_static[a.group[k]]) continue;
+      const auto mo = Bodies::motion(a.model, ys, k);
+      const double rim = Bodies::speed(mo) + c_.setup.sphere_radius[a.group[k]] * Bodies::angular_speed(mo);
+      if (rim > most) most = rim, fastest = k;
+    }
+    std::ostringstream msg;
+    msg << "collisions: no progress at t=" << t << ": " << why << " (body '" << a.model.names[fastest]
+        << "' reaches " << most << " m/s; stage time_of_impact)";
+    throw run_error(msg.str());
+  }
+  static std::string fmt(double x) {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+  }
+};
+
+}  // namespace gacompare::core

@@ -1,0 +1,107 @@
+#include "core/collision/collisions.hpp"
+
+
+#include <algorithm>
+
+namespace gacompare::core {
+
+void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const {
+  out["collision_steps"] = steps;
+  out["collision_steps_shortened"] = shortened_steps;
+  out["broadphase_candidates"] = broadphase_candidates;
+  out["broadphase_tree_updates"] = broadphase_tree_updates;
+  out["broadphase_pairs_kept"] = broadphase_pairs_kept;
+  out["narrowphase_pairs"] = narrowphase_pairs;
+  out["impact_searches"] = impact_searches;
+  out["impact_iterations"] = impact_iterations;
+  out["impact_state_evaluations"] = impact_evaluations;
+  out["impact_searches_unresolved"] = unresolved_searches;
+  out["impact_interpolated_evaluations"] = impact_interpolations;
+  out["impact_interpolation_misses"] = impact_interpolation_misses;
+  out["impact_bodies_integrated"] = impact_bodies_integrated;
+  out["impact_island_misses"] = impact_island_misses;
+  out["contacts"] = contacts;
+  out["resting_contacts"] = resting_contacts;
+  out["impulses"] = impulses;
+  out["response_sweeps"] = sweeps;
+  out["positional_corrections"] = corrections;
+  out["warm_started_contacts"] = warm_started;
+  out["response_sweep_cap_hits"] = sweep_cap_hits;
+  out["correction_sweep_cap_hits"] = correction_cap_hits;
+  out["unresolved_impacts"] = unresolved_impacts;
+  out["islands"] = islands;
+  out["islands_stepped_alone"] = local_islands;
+  out["island_bodies_stepped_alone"] = local_island_bodies;
+  out["island_steps"] = local_steps;
+  out["island_narrowphase_pairs"] = island_narrowphase_pairs;
+  out["links_apart"] = links_apart;
+  out["links_face_tested"] = links_face_tested;
+  out["largest_island"] = largest_island;
+  out["narrowphase_shapes"] = narrowphase_shapes;
+  out["narrowphase_axes_kept"] = narrowphase_axes_kept;
+  out["friction_contacts"] = friction_contacts;
+  out["sliding_contacts"] = sliding_contacts;
+  out["friction_warm_started"] = friction_warm_started;
+  out["contact_solves"] = solves;
+  out["direct_pivots"] = direct_pivots;
+  out["direct_factorisations"] = direct_factorisations;
+  out["direct_friction_rounds"] = direct_rounds;
+  out["direct_unsolved"] = direct_unsolved;
+  out["projections_refused"] = projections_refused;
+  for (std::size_t k = 0; k < sweep_histogram.size(); ++k) {
+    if (!sweep_histogram[k]) continue;
+    const std::uint64_t lo = std::uint64_t{1} << k, hi = (lo << 1) - 1;
+    std::string key = "sweeps_per_solve_";
+    key += std::to_string(lo);
+    if (hi > lo) key += '_', key += std::to_string(hi);
+    out[key] = sweep_histogram[k];
+  }
+  for (std::size_t k = 0; k < residual_histogram.size(); ++k) {
+    if (!residual_histogram[k]) continue;
+    const bool last = k + 1 == residual_histogram.size();
+    std::string key = last ? "velocity_residual_below_1e-" : "velocity_residual_from_1e-";
+    key += std::to_string(last ? k : k + 1);
+    out[key] = residual_histogram[k];
+  }
+}
+
+void CollisionCounters::add_sweeps(int sweeps) {
+  std::size_t k = 0;
+  while (k + 1 < sweep_histogram.size() && (2 << k) <= sweeps) ++k;
+  ++sweep_histogram[k];
+}
+
+void CollisionCounters::add_residual(double residual) {
+  // Bucket k holds [1e-(k+1), 1e-k): k = floor(-log10 r), the last bucket everything smaller.
+  std::size_t k = 0;
+  double edge = 1e-1;
+  while (k + 1 < residual_histogram.size() && residual < edge) ++k, edge *= 0.1;
+  ++residual_histogram[k];
+}
+
+CollisionSetup collision_setup(const Scene& scene, const Model& model) {
+  CollisionSetup s;
+  s.settings = *scene.find_effect<Collisions>();
+  s.solver = scene.solver;
+  s.gravity = model.gravity;
+  s.resting_speed = model.resting_speed;
+  s.min_inradius = model.min_inradius;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyModel& b = model.bodies[i];
+    if (!b.convex)
+      throw input_error("body '" + scene.bodies[i].name + "': the collisions effect needs convex bodies (§2.4.2): " +
+                        b.not_convex);
+    s.names.push_back(scene.bodies[i].name);
+    s.meshes.push_back(b.mesh);
+    s.inradius.push_back(b.inradius);
+    s.restitution.push_back(b.restitution);
+    s.friction.push_back(b.friction);
+    s.is_static.push_back(b.is_static);
+    s.static_mid.push_back(b.box_mid);
+    s.static_half.push_back(b.box_half);
+    s.all_bodies.push_back(static_cast<int>(s.all_bodies.size()));
+  }
+  return s;
+}
+
+}  // namespace gacompare::core

@@ -1,0 +1,241 @@
+#pragma once
+// Detection between rigid bodies (§2.4, fig. 11), written once over a
+// backend: its rigid bodies (core::RigidBodies), its narrowphase view of a
+// body and its bounding-sphere algebra (CollisionAlgebra below). The Collider
+// is read-only, built once per run from the compiled model; what the stages
+// carry from one step to the next is the run's CollisionState, passed to each
+// stage. Only built when the scene lists the `collisions` effect.
+//
+// One collision step (core/collision/collision_step.hpp): the world integrated
+// to t1, then here the broadphase (bounding spheres grown by how far each body
+// can move in the step, core/collision/broadphase.hpp) and the narrowphase
+// (the separating-axis depth, then the contact manifold, core/collision/manifold.hpp,
+// or the report's fig. 7 detector); then islands (core/collision/islands.hpp),
+// time of impact (core/collision/time_of_impact_step.hpp) and the response
+// (core/contact/contact_solver.hpp).
+#include "core/collision/bounding_volume.hpp"
+#include "core/collision/broadphase.hpp"
+#include "core/collision/collision.hpp"
+#include "core/collision/collision_setup.hpp"
+#include "core/contact/contact_solver.hpp"
+#include "core/error.hpp"
+#include "core/collision/narrowphase.hpp"
+#include "core/collision/pair_memory.hpp"
+#include "core/dynamics/rigid_body.hpp"
+#include "core/model/model.hpp"
+#include "core/model/scene.hpp"
+#include "core/stage.hpp"
+#include "core/collision/time_of_impact.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <random>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace gacompare::core {
+
+struct Detection {
+  double max_depth = -INFINITY;  // over the pairs in contact; −∞ when none
+  std::vector<PairHit> hits;
+  // With margins: the pairs whose grown spheres overlap (i < j, sorted), a
+  // superset of the pairs the narrowphase tested; the islands' links.
+  std::vector<std::pair<int, int>> candidates;
+  // With margins: the pairs found farther apart than both bodies can move in
+  // the step (Collider::note_apart), in the order tested; they link nothing.
+  std::vector<std::pair<int, int>> apart;
+};
+
+// What a backend supplies the collision stages beyond its rigid bodies: the
+// narrowphase view of a body (a BodyView over its narrowphase algebra) and
+// its bounding-sphere algebra.
+template <class C>
+concept CollisionAlgebra = collision::NarrowphaseBody<typename C::Body> && SphereTreeOps<typename C::Spheres>;
+
+// What the collision stages carry from one step to the next: the step
+// context every stage reads and writes (the Collider itself is read-only).
+// A run owns one, started from the state the Collider's build left (its
+// broadphase tree and pair memory after the overlap check at t = 0).
+template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
+struct CollisionState {
+  CollisionCounters counters;
+  Broadphase<Spheres> broadphase;  // its trees and pairs persist between detections
+  // The narrowphase's geometry of each body: placed once per detection (or
+  // per time-of-impact trial) on its first pair, then read by every pair it
+  // is in; pose() is only asked for bodies some pair needs.
+  std::vector<typename NarrowBody::Shape> shapes;
+  std::vector<std::uint64_t> placed_in;  // the detection each shape was placed in
+  std::uint64_t detection = 0;
+  collision::PairMemory<collision::SatHint> hints;  // each pair's last axis
+  ContactSolver<Bodies> contact;  // the response stage, with its warm-start cache
+};
+
+// The collider works on a group of bodies: the whole world (the world's model
+// and state, `setup.all_bodies` as the group) or one island integrated on its
+// own (an island's sub-model, core/collision/collision_step.hpp). Body k of the group's
+// model is world body group[k]: meshes, spheres, restitution and the
+// warm-start cache are the world's, the state and the motions the group's.
+// Read-only: the stages' drivers below (broadphase_step.hpp,
+// narrowphase_step.hpp) take the run's CollisionState.
+template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
+  requires collision::NarrowphaseBody<NarrowBody>
+struct Collider {
+  using Model = typename Bodies::Model;
+  using BodiesType = Bodies;
+  // The world index of each body of a group (the group's body k is world body group[k]).
+  using BodyIndices = std::span<const int>;
+  using State = CollisionState<Bodies, NarrowBody, Spheres>;
+  CollisionSetup setup;
+
+  // The collider, and in `state` the stages' state a run starts from.
+  static Collider build(const Scene& scene, const core::Model& compiled, const Model& m, State& state,
+                        Profile& profile) {
+    Collider c;
+    c.setup = collision_setup(scene, compiled);
+    state.broadphase = Broadphase<Spheres>(c.setup.settings.broadphase);
+    {
+      ScopedStage timed(profile, Stage::bounding_volumes);
+      std::mt19937_64 rng(1);  // Welzl's shuffle: fixed, so runs repeat exactly
+      for (const auto& mesh : c.setup.meshes) {
+        const auto s = welzl_sphere<Spheres>(std::span<const Vec3>(mesh->vertices()), rng).sphere;
+        c.setup.sphere_centre.push_back(Spheres::centre(s));
+        c.setup.sphere_radius.push_back(Spheres::radius(s));
+      }
+    }
+    // fn 28: bodies must not start in collision.
+    const Detection d = c.detect(state, m, m.y0, c.setup.all_bodies, {}, profile);
+    for (const auto& h : d.hits)
+      if (h.sat.depth > c.setup.settings.penetration_tolerance)
+        throw input_error("bodies '" + c.setup.names[h.a] + "' and '" + c.setup.names[h.b] + "' overlap at t = 0 by " +
+                          std::to_string(h.sat.depth) + " m, more than the penetration tolerance (" +
+                          std::to_string(c.setup.settings.penetration_tolerance) +
+                          " m): a scene must start without collisions (§2.4.3 fn 28)");
+    state.counters = {};
+    return c;
+  }
+
+  // --- the broadphase stage (core/collision/broadphase_step.hpp) ---
+
+  // Every body's pose at state y, once per detection (a rotor or quaternion
+  // becomes a matrix here, not once per pair it takes part in).
+  std::vector<collision::Pose> poses(const Model& m, std::span<const double> y, BodyIndices group) const;
+  collision::Placed placed(const std::vector<collision::Pose>& pose, BodyIndices group, int k) const;
+
+  // Broadphase and narrowphase at one state of a group. margin (empty, or one
+  // per body of the group) grows each body's sphere by how far it can move in
+  // the step: the grown spheres' overlaps are the candidates (the islands'
+  // links, Detection::candidates), and the narrowphase tests the candidates
+  // whose own spheres overlap.
+  Detection detect(State& state, const Model& m, std::span<const double> y, BodyIndices group, std::span<const double> margin,
+                   Profile& profile) const;
+
+  // The same for a group whose candidate pairs are known (an island within
+  // its step: the pairs its bodies' grown spheres link, core/collision/collision_step.hpp):
+  // of those, the pairs whose own spheres overlap (in a frame at the group's
+  // mean position) and that reach a static body's box go to the narrowphase.
+  Detection detect_among(State& state, const Model& m, std::span<const double> y, BodyIndices group,
+                         std::span<const std::pair<int, int>> candidates, Profile& profile) const;
+
+  // Whether pair p of a group is a moving and a static body and the moving
+  // one's sphere (grown by grow[o] when grow is given) misses the static
+  // body's box (reaches_static).
+  bool misses_static(const std::vector<collision::Pose>& pose, BodyIndices group, const std::vector<Vec3>& centres,
+                     const std::pair<int, int>& p, std::span<const double> grow) const;
+
+  // Whether a sphere (centre c, radius r, world) reaches static body s's box
+  // placed by its pose: the box point nearest c within r, padded by the
+  // touching band and the rounding of the coordinates, so that no pair the
+  // narrowphase would call touching is dropped. Algebra-neutral, like the
+  // AABB tree: a filter on which pairs are tested, not a part of either
+  // backend's geometry.
+  bool reaches_static(const collision::Pose& pose, int s, const Vec3& c, double r) const;
+
+  // Each body's bounding-sphere centre in the world at its pose.
+  std::vector<Vec3> sphere_centres(const std::vector<collision::Pose>& pose, BodyIndices group) const;
+
+  // --- the narrowphase stage (core/collision/narrowphase_step.hpp) ---
+
+  // The narrowphase of a group's pairs into d (hits and their deepest depth).
+  void narrow(State& state, BodyIndices group, const std::vector<collision::Pose>& pose, const std::vector<std::pair<int, int>>& pairs,
+              Detection& d, Profile& profile, std::span<const double> margin = {}) const;
+
+  // A pair the world's detection found apart, kept in d.apart when it is
+  // farther apart than both bodies can move in the step (the islands' links
+  // leave it out: core/collision/collision_step.hpp, unlink_far): when some face
+  // normal separates it by more than that (collision::face_gap, which stops
+  // at the first that does; a round pair by its exact distance).
+  // Not simply by the gap the narrowphase stopped at: its first axis is the
+  // pair's remembered one when geometry is reused (setup.settings.reuse), and
+  // a link must not depend on that. A face axis's gap bounds the faces' best
+  // from below, so where it already exceeds the reaches it decides alone.
+  void note_apart(State& state, BodyIndices group, const std::vector<collision::Pose>& pose, const PairHit& h,
+                  std::span<const double> margin, Detection& d) const;
+
+  // f(va, vb) over world bodies wa and wb placed by pose_a() and pose_b(),
+  // in the pair's own frame: with reuse, the bodies' shapes of this
+  // detection; without, the pair's own, built here.
+  template <class PoseA, class PoseB, class F>
+  auto on_pair(State& state, int wa, int wb, PoseA&& pose_a, PoseB&& pose_b, F&& f) const;
+
+  // The deepest separating-axis depth among the given pairs of the group (the
+  // time-of-impact function: continuous in time, unlike the feature test's
+  // yes/no), at state y, or with each body placed by pose_of(k).
+  double depth_of(State& state, const Model& m, std::span<const double> y, BodyIndices group, const std::vector<std::pair<int, int>>& pairs,
+                  Profile& profile) const;
+  template <class PoseOf>
+  double depth_at(State& state, BodyIndices group, const std::vector<std::pair<int, int>>& pairs, PoseOf&& pose_of, Profile& profile) const;
+
+  // --- how far bodies can move in a step (the islands' links, sub-steps) ---
+
+  // How fast body k's rim can move: |v| + ρ|ω|, ρ its bounding radius.
+  double rim_speed(const Model& m, std::span<const double> y, BodyIndices group, std::size_t k) const {
+    if (setup.is_static[group[k]]) return 0;
+    const auto mo = Bodies::motion(m, y, k);
+    return Bodies::speed(mo) + setup.sphere_radius[group[k]] * Bodies::angular_speed(mo);
+  }
+
+  // How far body k of the group can move in h: a point at distance ρ from the
+  // centre moves at most (|v| + ρ|ω|) h, and gravity adds ½ g h². 0 when static.
+  double reach(const Model& m, std::span<const double> y, BodyIndices group, std::size_t k, double h) const {
+    if (setup.is_static[group[k]]) return 0;
+    return rim_speed(m, y, group, k) * h + 0.5 * setup.gravity * h * h;
+  }
+
+  // How long a step of the group may be: no body moves more than half the
+  // smallest inradius (of the world: a conservative bound for every island).
+  double step_limit(const Model& m, std::span<const double> y, BodyIndices group, double h) const {
+    double most = 0;
+    for (std::size_t k = 0; k < group.size(); ++k) most = std::max(most, reach(m, y, group, k, h));
+    const double limit = 0.5 * setup.min_inradius;
+    return most > limit ? h * limit / most : h;
+  }
+
+  // §2.5: impulses at every contact of `hits` (pairs of the group), solved
+  // together, then the positional correction (see the top of this file). `dt`
+  // is the time since the group's last accepted state: warm-started impulses
+  // scale with it.
+  void respond(State& state, const Model& m, std::span<double> y, BodyIndices group, std::span<const PairHit> hits, double dt,
+               Profile& profile) const {
+    state.contact.respond(setup, state.counters, m, y, group, hits, dt, profile);
+  }
+
+  // Once per collision step: see ContactSolver::forget_old_contacts.
+  void forget_old_contacts(State& state) const { state.contact.forget_old_contacts(state.counters.steps); }
+
+ private:
+  using Shape = typename NarrowBody::Shape;
+
+  template <class PoseOf>
+  const Shape& shape(State& state, int b, PoseOf&& pose_of) const;
+};
+
+}  // namespace gacompare::core
+
+// The stages' drivers, members of the Collider.
+#include "core/collision/broadphase_step.hpp"
+#include "core/collision/narrowphase_step.hpp"

@@ -1,0 +1,53 @@
+#pragma once
+// A group of bodies integrated on its own: an island stepped alone, or the
+// bodies of the pairs a time-of-impact search re-integrates.
+#include "core/dynamics/ode.hpp"
+#include "core/model/scene.hpp"
+#include "core/stage.hpp"
+
+#include <algorithm>
+#include <span>
+#include <vector>
+
+namespace gacompare::core {
+
+// An island's bodies as a model of their own, their state copied out of the
+// world's and back, and the scene's solver for them alone.
+template <class Bodies>
+struct Subsystem {
+  using Model = typename Bodies::Model;
+  Model model;
+  std::span<const int> group;
+  std::size_t stride;
+  OdeSolver solver;
+  Subsystem(const Model& m, std::span<const int> bodies, std::size_t stride_, const SolverSpec& spec)
+      : model(Bodies::subset(m, bodies)), group(bodies), stride(stride_), solver(spec, bodies.size() * stride_) {
+    solver.set_error_norm([this, spec](std::span<const double> a, std::span<const double> b, std::span<const double> e) {
+      return Bodies::error_ratio(model, a, b, e, spec.abs_tol, spec.rel_tol);
+    });
+  }
+  Subsystem(const Subsystem&) = delete;
+  Subsystem& operator=(const Subsystem&) = delete;
+  std::vector<double> gather(std::span<const double> y) const {
+    std::vector<double> out(group.size() * stride);
+    for (std::size_t k = 0; k < group.size(); ++k)
+      std::copy_n(y.begin() + static_cast<long>(group[k] * stride), stride, out.begin() + static_cast<long>(k * stride));
+    return out;
+  }
+  void scatter(const std::vector<double>& ys, std::span<double> y) const {
+    for (std::size_t k = 0; k < group.size(); ++k)
+      std::copy_n(ys.begin() + static_cast<long>(k * stride), stride, y.begin() + static_cast<long>(group[k] * stride));
+  }
+  // Integrates ys from t to t_end (the island's forces are timed as `forces`
+  // in `profile`, like the world's).
+  void integrate(double t, double t_end, std::vector<double>& ys, Profile& profile) {
+    auto f = [&](double tt, std::span<const double> yy, std::span<double> dy) {
+      ScopedStage timed(profile, Stage::forces);
+      Bodies::derivative(model, tt, yy, dy);
+    };
+    auto after = [&](std::vector<double>& yy) { return Bodies::renormalise(model, yy); };
+    solver.advance(f, t, t_end, ys, profile, after);
+  }
+};
+
+}  // namespace gacompare::core

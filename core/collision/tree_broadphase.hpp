@@ -1,0 +1,220 @@
+#pragma once
+// The broadphase by dynamic trees: persistent pairs over
+// fat volumes, one tree for the moving bodies and one for the static ones,
+// over either volume policy:
+//   AabbVolume           algebra-neutral boxes (core::Aabb) around each body's
+//                        bounding sphere: the practical baseline;
+//   SphereVolume<Ops>    the report's sphere trees (§4.2.2, fig. 13): leaves
+//                        are the bodies' bounding spheres, parents enclosing
+//                        spheres, in the backend's algebra (centre and radius;
+//                        conformal dual spheres whose enclosing sphere, cost
+//                        and overlap are inner products, cga/bounding_volume.hpp).
+// §4.2.2 builds a sphere tree per body to approximate its shape; here the
+// tree is over the scene's bodies, one sphere each, the use the report's
+// broadphase needs (its §2.4.1 spheres, organised as §4.2.2 suggests).
+//
+// Each detection (update):
+//   1. every body's tight volume (its bounding sphere, or the box around it) is
+//      checked against the fat volume its leaf holds (the tight one grown by
+//      kFatMargin of its radius); only a body that left it is reinserted;
+//   2. the pairs of reinserted bodies are dropped and found again by querying
+//      the trees with their new fat volumes (a moving body: both trees; a
+//      static one: the moving tree only, so two static bodies are never a
+//      pair). A pair of two bodies that stayed is kept: their fat volumes have
+//      not changed, so neither has their overlap. A still scene reinserts
+//      nothing and queries nothing;
+//   3. every kept pair gets the backend's exact sphere test
+//      (Ops::overlap on the tight spheres), and the survivors, sorted, are the
+//      answer: the same pairs as sort and sweep's and all pairs' (tested).
+// Why the answer is exact although tree volumes are rounded: a pair whose tight
+// spheres pass Ops::overlap has fat volumes overlapping by at least the two
+// margins (kFatMargin of each radius), far more than the rounding of
+// any merge, containment or overlap test (~1e-16 of the coordinates' squares
+// over the radius; see core/collision/broadphase.hpp for the frame that keeps
+// coordinates small), so no rounded test on the way down can lose it. The
+// margin only adds kept pairs, which the exact test removes.
+#include "core/collision/bounding_volume.hpp"
+#include "core/collision/dynamic_tree.hpp"
+
+#include <algorithm>
+#include <concepts>
+#include <cstdint>
+#include <iterator>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace gacompare::core {
+
+// How much larger than a body's bounding sphere its leaf is, relative to its
+// radius. Larger: fewer reinsertions, more kept pairs to test. Box2D v3 uses
+// 0.1 m for bodies of about a metre. The AABB tree's time falls with the
+// margin up to about this one and then flattens, its kept pairs growing as
+// fast as its reinsertions fall; a denser scene keeps more pairs per margin,
+// so one margin for both trees (bench/broadphase_bench.cpp margin<M>_coherent_1000).
+inline constexpr double kFatMargin = 0.4;
+
+// What a sphere tree needs of a backend beyond the BoundingSphereOps: the node
+// operations of traditional/bounding_volume.hpp and cga/bounding_volume.hpp.
+template <class Ops>
+concept SphereTreeOps = BoundingSphereOps<Ops> && requires(const typename Ops::Sphere& s, double t) {
+  { Ops::enclosing(s, s) } -> std::convertible_to<typename Ops::Sphere>;
+  { Ops::encloses(s, s) } -> std::convertible_to<bool>;
+  { Ops::grown(s, t) } -> std::convertible_to<typename Ops::Sphere>;
+  { Ops::radius_squared(s) } -> std::convertible_to<double>;
+};
+
+// Boxes around the bounding spheres; the cost is half the surface area.
+struct AabbVolume {
+  using Volume = Aabb;
+  static constexpr bool grouping_free = true;  // a union of boxes is one box however grouped
+  static Aabb merge(const Aabb& a, const Aabb& b) { return {a.min.cwiseMin(b.min), a.max.cwiseMax(b.max)}; }
+  static double cost(const Aabb& a) {
+    const Vec3 e = a.max - a.min;
+    return e.x() * e.y() + e.y() * e.z() + e.z() * e.x();
+  }
+  static bool overlap(const Aabb& a, const Aabb& b) { return core::overlap(a, b); }
+  static bool contains(const Aabb& outer, const Aabb& inner) {
+    return (outer.min.array() <= inner.min.array()).all() && (inner.max.array() <= outer.max.array()).all();
+  }
+  template <class Sphere>
+  static Aabb bound(const Vec3& centre, double radius, const Sphere&) {
+    return {centre.array() - radius, centre.array() + radius};
+  }
+  static Aabb grown(const Aabb& a, double by) { return {a.min.array() - by, a.max.array() + by}; }
+};
+
+// The backend's spheres themselves; the cost is ρ².
+template <SphereTreeOps Ops>
+struct SphereVolume {
+  using Volume = typename Ops::Sphere;
+  static Volume merge(const Volume& a, const Volume& b) { return Ops::enclosing(a, b); }
+  static double cost(const Volume& a) { return Ops::radius_squared(a); }
+  static bool overlap(const Volume& a, const Volume& b) { return Ops::overlap(a, b); }
+  static bool contains(const Volume& outer, const Volume& inner) { return Ops::encloses(outer, inner); }
+  static const Volume& bound(const Vec3&, double, const Volume& sphere) { return sphere; }
+  static Volume grown(const Volume& s, double by) { return Ops::grown(s, by); }
+};
+
+// One detection's bodies, in the broadphase's frame. With margins (how far
+// each body can move in the step; empty for none), the grown spheres'
+// overlaps are wanted too: the islands' links (core/collision/collision_step.hpp).
+template <class Sphere>
+struct BroadphaseBodies {
+  std::span<const Vec3> centres;
+  std::span<const double> radii;    // the bounding spheres'
+  std::span<const double> margins;  // empty, or one per body
+  std::span<const Sphere> spheres;  // Ops::sphere(centre, radius)
+  std::span<const Sphere> grown;    // Ops::sphere(centre, radius + margin); = spheres without margins
+  std::span<const char> is_static;
+};
+
+// The work of one update, for the counters.
+struct TreeWork {
+  std::int64_t volume_tests = 0;  // tree nodes tested by the queries
+  std::int64_t exact_tests = 0;   // Ops::overlap calls on kept pairs
+  std::int64_t reinserted = 0;    // leaves (re)inserted
+  std::int64_t kept = 0;          // pairs kept after the update
+};
+
+template <class V, BoundingSphereOps Ops>
+class TreeBroadphase {
+ public:
+  using Sphere = typename Ops::Sphere;
+  explicit TreeBroadphase(double margin = kFatMargin) : margin_(margin) {}
+
+  // Forgets everything: the next update inserts every body afresh.
+  void clear() {
+    moving_.clear(), fixed_.clear();
+    leaf_.clear(), kept_.clear(), is_static_.clear();
+  }
+
+  // Appends the pairs whose spheres overlap to `pairs` and, with margins, the
+  // pairs whose grown spheres do to `candidates` (both i < j, sorted; every
+  // pair is a candidate). A leaf bounds the grown sphere, so its fat volume
+  // holds it while the body moves less than the fat margin less its growth.
+  TreeWork update(const BroadphaseBodies<Sphere>& b, std::vector<std::pair<int, int>>& pairs,
+                  std::vector<std::pair<int, int>>& candidates) {
+    const std::size_t n = b.spheres.size();
+    if (leaf_.size() != n || !std::equal(is_static_.begin(), is_static_.end(), b.is_static.begin(), b.is_static.end())) {
+      clear();
+      leaf_.assign(n, kNull);
+      is_static_.assign(b.is_static.begin(), b.is_static.end());
+    }
+    const bool growing = !b.margins.empty();
+    TreeWork work;
+    moved_.assign(n, 0);
+    bool any = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto tight = V::bound(b.centres[i], b.radii[i] + (growing ? b.margins[i] : 0.0), b.grown[i]);
+      Tree& tree = tree_of(i);
+      if (leaf_[i] != kNull && V::contains(tree.volume(leaf_[i]), tight)) continue;
+      if (leaf_[i] != kNull) tree.remove(leaf_[i]);
+      leaf_[i] = tree.insert(V::grown(tight, margin_ * b.radii[i]), static_cast<int>(i));
+      moved_[i] = 1, any = true;
+      ++work.reinserted;
+    }
+    if (any) find_pairs_of_moved();
+    work.kept = static_cast<std::int64_t>(kept_.size());
+    for (const auto& [i, j] : kept_) {
+      const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+      if (growing) {
+        ++work.exact_tests;
+        if (!Ops::overlap(b.grown[ui], b.grown[uj])) continue;
+        candidates.emplace_back(i, j);
+      }
+      ++work.exact_tests;
+      if (Ops::overlap(b.spheres[ui], b.spheres[uj])) pairs.emplace_back(i, j);
+    }
+    work.volume_tests = moving_.take_volume_tests() + fixed_.take_volume_tests();
+    return work;
+  }
+
+  const DynamicTree<V>& moving_tree() const { return moving_; }
+  const DynamicTree<V>& static_tree() const { return fixed_; }
+
+ private:
+  using Tree = DynamicTree<V>;
+  using Pair = std::pair<int, int>;
+  static constexpr int kNull = Tree::kNull;
+  double margin_;  // relative to each body's radius
+  Tree moving_, fixed_;
+  std::vector<int> leaf_;    // body → its leaf in its tree
+  std::vector<Pair> kept_;   // the pairs whose fat volumes overlap, i < j, sorted
+  std::vector<char> is_static_;
+  std::vector<char> moved_;  // this update's reinserted bodies
+  std::vector<Pair> fresh_, merged_;
+
+  Tree& tree_of(std::size_t i) { return is_static_[i] ? fixed_ : moving_; }
+
+  // The kept pairs of two bodies that stayed are still right; every pair of a
+  // moved body is dropped and found again by querying the trees with its new
+  // fat volume. A pair of two moved bodies may be found from either side (a
+  // query descends by rounded tests, so not necessarily from both); sorting
+  // the fresh pairs and dropping repeats keeps it once. Both lists are
+  // sorted and disjoint (every fresh pair has a moved body, no kept one
+  // does), so a merge gives the sorted whole.
+  void find_pairs_of_moved() {
+    std::erase_if(kept_, [&](const Pair& p) {
+      return moved_[static_cast<std::size_t>(p.first)] || moved_[static_cast<std::size_t>(p.second)];
+    });
+    fresh_.clear();
+    for (std::size_t i = 0; i < leaf_.size(); ++i) {
+      if (!moved_[i]) continue;
+      const int me = static_cast<int>(i);
+      const auto add = [&](int j) {
+        if (j != me) fresh_.emplace_back(std::min(me, j), std::max(me, j));
+      };
+      const auto& fat = tree_of(i).volume(leaf_[i]);
+      moving_.query(fat, add);
+      if (!is_static_[i]) fixed_.query(fat, add);
+    }
+    std::sort(fresh_.begin(), fresh_.end());
+    fresh_.erase(std::unique(fresh_.begin(), fresh_.end()), fresh_.end());
+    merged_.clear();
+    std::merge(kept_.begin(), kept_.end(), fresh_.begin(), fresh_.end(), std::back_inserter(merged_));
+    kept_.swap(merged_);
+  }
+};
+
+}  // namespace gacompare::core

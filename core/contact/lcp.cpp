@@ -1,0 +1,190 @@
+#include "core/contact/lcp.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace gacompare::core::contact {
+
+namespace {
+
+enum class State : char { free, lower, upper, fixed };  // fixed: lo = hi
+
+// x solving A_FF x = r for the free rows F (free[i] = position in F, or −1),
+// regularised by δ and refined with A_FF itself (see lcp.hpp).
+class FreeSystem {
+ public:
+  FreeSystem(const Eigen::SparseMatrix<double>& a, const std::vector<Eigen::Index>& rows,
+             const std::vector<Eigen::Index>& free, double delta, int dense_up_to)
+      : n_(static_cast<Eigen::Index>(rows.size())), dense_(n_ <= dense_up_to) {
+    std::vector<Eigen::Triplet<double>> t;
+    for (Eigen::Index k = 0; k < n_; ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(a, rows[static_cast<std::size_t>(k)]); it; ++it)
+        if (const Eigen::Index j = free[static_cast<std::size_t>(it.row())]; j >= 0) t.emplace_back(j, k, it.value());
+    a_ff_.resize(n_, n_);
+    a_ff_.setFromTriplets(t.begin(), t.end());
+    Eigen::SparseMatrix<double> reg = a_ff_;
+    for (Eigen::Index k = 0; k < n_; ++k) reg.coeffRef(k, k) += delta;
+    if (dense_) {
+      dense_ldlt_.compute(Eigen::MatrixXd(reg));
+    } else {
+      sparse_ldlt_.compute(reg);
+    }
+  }
+
+  // The regularised system's answer: (A_FF + δI) x = r.
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return once(r); }
+
+  // x refined towards A_FF x = r (δ taken away again): converges on r's part in
+  // A_FF's range; stops when it no longer gains (the rest lies in the null
+  // space and moves nothing).
+  Eigen::VectorXd refine(const Eigen::VectorXd& r, Eigen::VectorXd x, double tolerance) const {
+    double last = (r - a_ff_ * x).cwiseAbs().maxCoeff();
+    for (int k = 0; k < 4 && last > tolerance; ++k) {
+      const Eigen::VectorXd y = x + once(r - a_ff_ * x);
+      const double now = (r - a_ff_ * y).cwiseAbs().maxCoeff();
+      if (!(now < 0.5 * last)) break;
+      x = y, last = now;
+    }
+    return x;
+  }
+
+ private:
+  Eigen::VectorXd once(const Eigen::VectorXd& r) const {
+    return dense_ ? Eigen::VectorXd(dense_ldlt_.solve(r)) : Eigen::VectorXd(sparse_ldlt_.solve(r));
+  }
+  Eigen::Index n_;
+  bool dense_;
+  Eigen::SparseMatrix<double> a_ff_;
+  Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> sparse_ldlt_;
+};
+
+double tolerance_of(const Blcp& p, const BlcpSettings& s) {
+  return s.velocity_tolerance > 0 ? s.velocity_tolerance : 1e-12 * (1 + p.b.cwiseAbs().maxCoeff());
+}
+
+}  // namespace
+
+double blcp_residual(const Blcp& p, const Eigen::VectorXd& lambda) {
+  const Eigen::VectorXd w = p.A * lambda + p.b;
+  double worst = 0;
+  for (Eigen::Index i = 0; i < w.size(); ++i) {
+    const double d = std::abs(p.A.coeff(i, i));
+    worst = std::max(worst, d * std::max({0.0, p.lo[i] - lambda[i], lambda[i] - p.hi[i]}));
+    const bool at_lo = lambda[i] <= p.lo[i], at_hi = lambda[i] >= p.hi[i];
+    // Between the bounds w must vanish; on a bound it may point away from it.
+    const double v = at_lo && at_hi ? 0.0 : at_lo ? std::max(0.0, -w[i]) : at_hi ? std::max(0.0, w[i]) : std::abs(w[i]);
+    worst = std::max(worst, v);
+  }
+  return worst;
+}
+
+BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings& settings) {
+  const Eigen::Index n = p.b.size();
+  BlcpResult result;
+  if (n == 0) {
+    result.solved = true;
+    return result;
+  }
+  const double tol = tolerance_of(p, settings);
+  double dmax = 0;
+  Eigen::VectorXd diag(n);
+  for (Eigen::Index i = 0; i < n; ++i) diag[i] = p.A.coeff(i, i), dmax = std::max(dmax, diag[i]);
+  const double delta = 1e-10 * dmax;
+  // A feasible start: the warm start held within its bounds; a row on a bound
+  // starts there, every other row free.
+  std::vector<State> state(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    lambda[i] = std::clamp(lambda[i], p.lo[i], p.hi[i]);
+    auto& s = state[static_cast<std::size_t>(i)];
+    s = p.lo[i] == p.hi[i]       ? State::fixed
+        : lambda[i] == p.lo[i]   ? State::lower
+        : lambda[i] == p.hi[i]   ? State::upper
+                                 : State::free;
+  }
+  std::vector<Eigen::Index> rows, free(static_cast<std::size_t>(n));
+  std::optional<FreeSystem> system;  // the last factorisation, and the right-hand side it solved
+  Eigen::VectorXd rhs;
+  for (int iteration = 0;; ++iteration) {
+    if (iteration == settings.max_pivots) {
+      result.residual = blcp_residual(p, lambda);
+      return result;
+    }
+    rows.clear();
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const bool f = state[static_cast<std::size_t>(i)] == State::free;
+      free[static_cast<std::size_t>(i)] = f ? static_cast<Eigen::Index>(rows.size()) : -1;
+      if (f) rows.push_back(i);
+    }
+    double step = 1;
+    Eigen::VectorXd x;
+    if (!rows.empty()) {
+      // The free rows' minimiser with the others held: (A_FF + δI) x = −(b_F + A_F,bound λ_bound).
+      Eigen::VectorXd on_bounds = lambda;
+      for (const Eigen::Index i : rows) on_bounds[i] = 0;
+      const Eigen::VectorXd known = p.A * on_bounds + p.b;
+      rhs.resize(static_cast<Eigen::Index>(rows.size()));
+      for (std::size_t k = 0; k < rows.size(); ++k) rhs[static_cast<Eigen::Index>(k)] = -known[rows[k]];
+      system.emplace(p.A, rows, free, delta, settings.dense_up_to);
+      ++result.factorisations;
+      x = system->solve(rhs);
+      // The longest step towards it that keeps every free row within its bounds.
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        const Eigen::Index i = rows[k];
+        const double from = lambda[i], to = x[static_cast<Eigen::Index>(k)];
+        if (to < p.lo[i]) step = std::min(step, (from - p.lo[i]) / (from - to));
+        if (to > p.hi[i]) step = std::min(step, (p.hi[i] - from) / (to - from));
+      }
+      step = std::max(step, 0.0);
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        const Eigen::Index i = rows[k];
+        lambda[i] += step * (x[static_cast<Eigen::Index>(k)] - lambda[i]);
+      }
+    }
+    if (step < 1) {
+      // Blocked: the rows that reached a bound stay on it.
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        const Eigen::Index i = rows[k];
+        const double to = x[static_cast<Eigen::Index>(k)];
+        const double reach = 1e-12 * (std::abs(lambda[i]) + std::abs(to));
+        if (to < p.lo[i] && lambda[i] <= p.lo[i] + reach) lambda[i] = p.lo[i], state[static_cast<std::size_t>(i)] = State::lower;
+        if (to > p.hi[i] && lambda[i] >= p.hi[i] - reach) lambda[i] = p.hi[i], state[static_cast<std::size_t>(i)] = State::upper;
+      }
+      ++result.pivots;
+      continue;
+    }
+    // At the free rows' minimiser: release every row a bound holds against
+    // the gradient (w of the regularised problem); none, and this is the answer.
+    const Eigen::VectorXd w = p.A * lambda + p.b + delta * lambda;
+    bool released = false;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      auto& st = state[static_cast<std::size_t>(i)];
+      if ((st == State::lower && w[i] < -tol) || (st == State::upper && w[i] > tol)) st = State::free, released = true;
+    }
+    if (released) {
+      ++result.pivots;
+      continue;
+    }
+    // The active set is the regularised problem's; the free rows' impulses
+    // are refined towards the problem itself (δλ taken out of every free
+    // row's velocity), kept where they stay within their bounds.
+    if (!rows.empty()) {
+      const Eigen::VectorXd y = system->refine(rhs, lambda(rows), 1e-3 * tol);
+      bool inside = true;
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        const double v = y[static_cast<Eigen::Index>(k)];
+        inside &= v >= p.lo[rows[k]] && v <= p.hi[rows[k]];
+      }
+      if (inside) lambda(rows) = y;
+    }
+    result.solved = true;
+    result.residual = blcp_residual(p, lambda);
+    return result;
+  }
+}
+
+}  // namespace gacompare::core::contact

@@ -1,0 +1,70 @@
+#pragma once
+// A direct solver for the contact problem of one island: the bounded linear
+// complementarity problem (BLCP)
+//
+//   w = A λ + b,  lo ≤ λ ≤ hi,  and for every row i
+//   w_i = 0 where lo_i < λ_i < hi_i,  w_i ≥ 0 where λ_i = lo_i,  w_i ≤ 0 where λ_i = hi_i,
+//
+// with A = J M⁻¹ Jᵀ symmetric positive semi-definite (the rows' Delassus
+// matrix: the velocity change of row i per unit impulse on row j). A normal
+// row has lo = 0, hi = ∞ (it pushes, never pulls); a friction row ±μλ_n; a
+// bilateral row ±∞. Projected Gauss–Seidel converges on this at a rate that
+// falls with the stack's height and the mass ratio (a column of n bodies at
+// about cos²(π/(n+1)) per sweep); this solver finds the active set instead and
+// then solves for it exactly.
+//
+// Method: a primal active-set method for the equivalent convex quadratic
+// programme, minimise ½ λᵀAλ + bᵀλ over lo ≤ λ ≤ hi (its optimality
+// conditions are the BLCP's; Nocedal & Wright, ch. 16.5). Each iteration
+// solves the free rows' linear system with the other rows held on their
+// bounds and steps towards that answer as far as the bounds allow; a row that
+// a step blocks joins its bound, and at a free minimiser every row that its
+// bound holds against the gradient is released. The objective falls at every
+// step, so the method cannot cycle, and a warm start's active set is usually
+// already right: one factorisation is the common case. (Block principal
+// pivoting, tried first, cycled on the degenerate sets of a face's corners.)
+//
+// A is singular whenever rows are redundant (the four corners of a face have
+// three degrees of freedom between them): then the answer's λ is not unique
+// and the free rows' system is singular. So the active set is found for
+// A + δI, δ a 1e-10 of A's largest diagonal: positive definite, a unique
+// answer, every free system invertible. Its free rows' impulses are then refined against
+// A itself (the regularisation's δλ taken out of their velocities): on the
+// consistent part the refinement converges like δ/σ per step (σ the smallest
+// non-zero eigenvalue), and what it leaves in A_FF's null space changes no
+// velocity (null A = null Jᵀ).
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <vector>
+
+namespace gacompare::core::contact {
+
+struct Blcp {
+  Eigen::SparseMatrix<double> A;  // symmetric, both triangles stored
+  Eigen::VectorXd b, lo, hi;
+};
+
+struct BlcpSettings {
+  int max_pivots = 256;         // active-set changes before giving up
+  double velocity_tolerance = 0;  // w's sign conditions hold to this (m/s or m)
+  int dense_up_to = 48;         // rows at most for a dense factorisation
+};
+
+struct BlcpResult {
+  bool solved = false;
+  int pivots = 0;          // active-set changes made
+  int factorisations = 0;
+  double residual = 0;     // the worst violation of the conditions above (w's units)
+};
+
+// Solves p for λ; lambda holds the warm start on entry (its rows strictly
+// inside their bounds start free) and the solution on return (the best found,
+// with result.solved false, after max_pivots).
+BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings& settings);
+
+// The worst violation of the BLCP conditions by λ (in w's units, with a bound
+// violation measured as its velocity effect |A_ii| |excess|).
+double blcp_residual(const Blcp& p, const Eigen::VectorXd& lambda);
+
+}  // namespace gacompare::core::contact

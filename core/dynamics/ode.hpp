@@ -1,0 +1,279 @@
+#pragma once
+// ODE solvers on a flat state (Appendix B): each backend packs its own state into
+// contiguous doubles and supplies f(t, y, dydt). Every advance() lands exactly on
+// the requested time, so samples fall on the output times.
+//
+//   euler         eq. 55, fixed step
+//   rk4           eq. 56, fixed step
+//   rk4_doubling  §B.3.1: one RK4 step of h against two of h/2; the difference
+//                 /15 estimates the error of the two-half-step result, which is kept
+//   cash_karp45   §B.3.2, eq. 57–58, Table 4: the 5th-order solution is kept
+//                 (local extrapolation) and the embedded 4th-order one gives the error
+//
+// Step control (§B.3.3, eq. 59, done properly): by default the caller's physical
+// error norm (set_error_norm; core/model/scene.hpp ErrorNorm), else the error of component i is
+// scaled by abs_tol + rel_tol·max(|y_i|, |y_new_i|); the worst ratio E sets the
+// step, h_new = h · clamp(0.9 · E^(−1/(order+1)), 0.2, 5). The report's eq. 59 has
+// no safety factor or limits, which lets one lucky step grow h without bound.
+// Fixed-step methods split each output interval into equal steps no longer than
+// dt (the recording mode of fn 39), so the last step is never a sliver.
+//
+// Beyond the report, two split (symplectic) methods for a state of positions and
+// velocities, where the derivative of position i is velocity velocity_of[i]:
+//   symplectic_euler  v += h a(x, v); x += h v  (one evaluation a step)
+//   velocity_verlet   x += h v + h²/2 a; v += h/2 (a + a(x', v*)), with the
+//                     velocity predictor v* = v + h a for velocity-dependent
+//                     forces (exact Verlet when forces depend on position only);
+//                     a(x', v*) is reused as the next step's a (one evaluation).
+#include "core/error.hpp"
+#include "core/model/scene.hpp"
+#include "core/stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <span>
+#include <sstream>
+#include <vector>
+
+namespace gacompare::core {
+
+struct SolverStats {
+  std::uint64_t steps_accepted = 0;
+  std::uint64_t steps_rejected = 0;
+  std::uint64_t derivative_evaluations = 0;
+  double min_step = std::numeric_limits<double>::infinity();
+  double max_step = 0;
+};
+
+bool is_adaptive(SolverMethod m);
+
+class OdeSolver {
+ public:
+  // velocity_of[i]: for a position component i the index of its velocity, −1 for
+  // a velocity component; needed only by the split methods.
+  OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> velocity_of = {});
+
+  // f(double t, std::span<const double> y, std::span<double> dydt).
+  // after_step(std::vector<double>& y) -> bool runs after every accepted step and
+  // says whether it changed y (constraint projection does).
+  // Advances y from t to t_end, leaving t == t_end. Throws run_error when an
+  // adaptive step shrinks below what double precision can resolve.
+  template <class F, class G>
+  void advance(F&& f, double& t, double t_end, std::vector<double>& y, Profile& profile, G&& after_step);
+  template <class F>
+  void advance(F&& f, double& t, double t_end, std::vector<double>& y, Profile& profile) {
+    advance(f, t, t_end, y, profile, [](std::vector<double>&) { return false; });
+  }
+
+  const SolverStats& stats() const { return stats_; }
+
+  // The error ratio of a step (≤ 1: accept) when the spec asks for the
+  // physical norm: norm(y, y_new, err) with the tolerances applied by the
+  // caller, which knows what the numbers are (core/dynamics/simulation.hpp). Without it,
+  // or with error_norm "component", every component against its tolerance.
+  using ErrorNormFn = std::function<double(std::span<const double>, std::span<const double>, std::span<const double>)>;
+  void set_error_norm(ErrorNormFn norm) { norm_ = std::move(norm); }
+
+  // Every loop makes progress or stops: at most `steps` steps
+  // (accepted and rejected) in this solver's life, else run_error naming the
+  // time and, through `who` (component index -> "body 'cube'"), what holds the
+  // largest error of the last step. The scene's limits.max_steps by default.
+  using DescribeFn = std::function<std::string(std::size_t)>;
+  // At most 2^53: every count below it is exact in a double and converts to an integer.
+  void set_step_budget(double steps) { budget_ = std::min(steps, 0x1p53); }
+  void set_describe(DescribeFn who) { who_ = std::move(who); }
+
+ private:
+  template <class F> void eval(F& f, double t, std::span<const double> y, std::vector<double>& dy);
+  template <class F> void rk4_step(F& f, double t, double h, const std::vector<double>& y, std::vector<double>& out);
+  template <class F> void split_step(F& f, double t, double h, std::vector<double>& y);
+  template <class F> double cash_karp_step(F& f, double t, double h, const std::vector<double>& y);
+  double error_ratio(const std::vector<double>& y, const std::vector<double>& ynew,
+                     const std::vector<double>& err) const;
+  void record(double h);
+  [[noreturn]] void stop(const std::string& why, double t, double h, const std::vector<double>& y) const;
+  std::string worst(const std::vector<double>& y) const;
+
+  SolverSpec spec_;
+  ErrorNormFn norm_;
+  DescribeFn who_;
+  double budget_ = 1e8;
+  double h_;  // adaptive: the step to try next
+  SolverStats stats_;
+  std::vector<int> velocity_of_;
+  bool have_acc_ = false;  // velocity_verlet: k5_ holds a(x, v) of the current state
+  std::vector<double> k1_, k2_, k3_, k4_, k5_, k6_, tmp_, out_, half_, err_;
+};
+
+// ---------------------------------------------------------------------------------
+
+template <class F>
+void OdeSolver::eval(F& f, double t, std::span<const double> y, std::vector<double>& dy) {
+  ++stats_.derivative_evaluations;
+  f(t, y, std::span<double>(dy));
+}
+
+template <class F>
+void OdeSolver::rk4_step(F& f, double t, double h, const std::vector<double>& y, std::vector<double>& out) {
+  const std::size_t n = y.size();
+  eval(f, t, y, k1_);
+  for (std::size_t i = 0; i < n; ++i) tmp_[i] = y[i] + 0.5 * h * k1_[i];
+  eval(f, t + 0.5 * h, tmp_, k2_);
+  for (std::size_t i = 0; i < n; ++i) tmp_[i] = y[i] + 0.5 * h * k2_[i];
+  eval(f, t + 0.5 * h, tmp_, k3_);
+  for (std::size_t i = 0; i < n; ++i) tmp_[i] = y[i] + h * k3_[i];
+  eval(f, t + h, tmp_, k4_);
+  for (std::size_t i = 0; i < n; ++i) out[i] = y[i] + h / 6.0 * (k1_[i] + 2.0 * (k2_[i] + k3_[i]) + k4_[i]);
+}
+
+// One Cash–Karp step: the 5th-order result into out_, the error estimate into err_.
+template <class F>
+double OdeSolver::cash_karp_step(F& f, double t, double h, const std::vector<double>& y) {
+  // Table 4 of the report (Cash & Karp 1990).
+  constexpr double a2 = 0.2, a3 = 0.3, a4 = 0.6, a5 = 1.0, a6 = 0.875;
+  constexpr double b21 = 0.2, b31 = 3.0 / 40, b32 = 9.0 / 40, b41 = 0.3, b42 = -0.9, b43 = 1.2;
+  constexpr double b51 = -11.0 / 54, b52 = 2.5, b53 = -70.0 / 27, b54 = 35.0 / 27;
+  constexpr double b61 = 1631.0 / 55296, b62 = 175.0 / 512, b63 = 575.0 / 13824, b64 = 44275.0 / 110592,
+                   b65 = 253.0 / 4096;
+  constexpr double c1 = 37.0 / 378, c3 = 250.0 / 621, c4 = 125.0 / 594, c6 = 512.0 / 1771;
+  constexpr double d1 = c1 - 2825.0 / 27648, d3 = c3 - 18575.0 / 48384, d4 = c4 - 13525.0 / 55296,
+                   d5 = -277.0 / 14336, d6 = c6 - 0.25;
+  const std::size_t n = y.size();
+  eval(f, t, y, k1_);
+  for (std::size_t i = 0; i < n; ++i) tmp_[i] = y[i] + h * b21 * k1_[i];
+  eval(f, t + a2 * h, tmp_, k2_);
+  for (std::size_t i = 0; i < n; ++i) tmp_[i] = y[i] + h * (b31 * k1_[i] + b32 * k2_[i]);
+  eval(f, t + a3 * h, tmp_, k3_);
+  for (std::size_t i = 0; i < n; ++i) tmp_[i] = y[i] + h * (b41 * k1_[i] + b42 * k2_[i] + b43 * k3_[i]);
+  eval(f, t + a4 * h, tmp_, k4_);
+  for (std::size_t i = 0; i < n; ++i)
+    tmp_[i] = y[i] + h * (b51 * k1_[i] + b52 * k2_[i] + b53 * k3_[i] + b54 * k4_[i]);
+  eval(f, t + a5 * h, tmp_, k5_);
+  for (std::size_t i = 0; i < n; ++i)
+    tmp_[i] = y[i] + h * (b61 * k1_[i] + b62 * k2_[i] + b63 * k3_[i] + b64 * k4_[i] + b65 * k5_[i]);
+  eval(f, t + a6 * h, tmp_, k6_);
+  for (std::size_t i = 0; i < n; ++i) {
+    out_[i] = y[i] + h * (c1 * k1_[i] + c3 * k3_[i] + c4 * k4_[i] + c6 * k6_[i]);
+    err_[i] = h * (d1 * k1_[i] + d3 * k3_[i] + d4 * k4_[i] + d5 * k5_[i] + d6 * k6_[i]);
+  }
+  return error_ratio(y, out_, err_);
+}
+
+template <class F>
+void OdeSolver::split_step(F& f, double t, double h, std::vector<double>& y) {
+  const std::size_t n = y.size();
+  if (spec_.method == SolverMethod::symplectic_euler) {
+    eval(f, t, y, k1_);
+    for (std::size_t i = 0; i < n; ++i)
+      if (velocity_of_[i] < 0) y[i] += h * k1_[i];
+    for (std::size_t i = 0; i < n; ++i)
+      if (velocity_of_[i] >= 0) y[i] += h * y[static_cast<std::size_t>(velocity_of_[i])];
+    return;
+  }
+  std::vector<double>& acc = k5_;  // velocity components of dy/dt: the accelerations
+  if (!have_acc_) eval(f, t, y, acc);
+  for (std::size_t i = 0; i < n; ++i)
+    if (velocity_of_[i] >= 0) {
+      const auto v = static_cast<std::size_t>(velocity_of_[i]);
+      y[i] += h * y[v] + 0.5 * h * h * acc[v];
+    }
+  for (std::size_t i = 0; i < n; ++i)
+    if (velocity_of_[i] < 0) {
+      tmp_[i] = y[i];
+      y[i] += h * acc[i];  // the predictor v*
+    }
+  eval(f, t + h, y, k1_);
+  for (std::size_t i = 0; i < n; ++i)
+    if (velocity_of_[i] < 0) y[i] = tmp_[i] + 0.5 * h * (acc[i] + k1_[i]);
+  acc.swap(k1_);
+  have_acc_ = true;
+}
+
+template <class F, class G>
+void OdeSolver::advance(F&& f, double& t, double t_end, std::vector<double>& y, Profile& profile, G&& after_step) {
+  const double span = t_end - t;
+  if (!(span > 0)) return;
+  const std::size_t n = y.size();
+  // One timed scope per advance (per output interval), not per step: two clock
+  // reads a step are a measurable share of a cheap derivative's run, an
+  // overhead no peer pays.
+  ScopedStage timed(profile, Stage::integrate);
+
+  if (!is_adaptive(spec_.method)) {
+    const double steps = std::max(1.0, std::ceil(span / spec_.dt * (1 - 1e-12)));
+    // Counted before they are taken: a count past 2^64 (dt 1e-300) would
+    // convert to nothing, and the body would silently never move.
+    if (static_cast<double>(stats_.steps_accepted) + steps > budget_) {
+      std::ostringstream why;
+      why << "the fixed step needs " << steps << " more steps to t=" << t_end << ", past the budget of " << budget_
+          << " (--max-steps raises it)";
+      stop(why.str(), t, spec_.dt, y);
+    }
+    const double h = span / steps;
+    const double t0 = t;
+    for (std::uint64_t k = 0; k < static_cast<std::uint64_t>(steps); ++k) {
+      const double tk = t0 + static_cast<double>(k) * h;
+      if (spec_.method == SolverMethod::euler) {
+        eval(f, tk, y, k1_);
+        for (std::size_t i = 0; i < n; ++i) y[i] += h * k1_[i];
+      } else if (spec_.method == SolverMethod::rk4) {
+        rk4_step(f, tk, h, y, out_);
+        y.swap(out_);
+      } else {
+        split_step(f, tk, h, y);
+      }
+      record(h);
+      if (after_step(y)) have_acc_ = false;
+    }
+    t = t_end;
+    return;
+  }
+
+  // Both adaptive methods estimate the error of a 4th-order step: it scales as h^5.
+  constexpr double order = 4.0;
+  while (t < t_end) {
+    if (static_cast<double>(stats_.steps_accepted + stats_.steps_rejected) >= budget_) {
+      std::ostringstream why;
+      why << "the budget of " << budget_ << " steps is spent (--max-steps raises it)";
+      stop(why.str(), t, h_, err_);
+    }
+    const bool last = t + h_ >= t_end;
+    const double h = last ? t_end - t : h_;
+    double ratio;
+    if (spec_.method == SolverMethod::cash_karp45) {
+      ratio = cash_karp_step(f, t, h, y);
+    } else {  // rk4_doubling
+      std::vector<double>& full = k6_;  // rk4_step does not use k6_
+      rk4_step(f, t, h, y, full);
+      rk4_step(f, t, 0.5 * h, y, half_);
+      rk4_step(f, t + 0.5 * h, 0.5 * h, half_, out_);
+      for (std::size_t i = 0; i < n; ++i) err_[i] = (out_[i] - full[i]) / 15.0;
+      ratio = error_ratio(y, out_, err_);
+    }
+    if (ratio <= 1.0) {
+      y.swap(out_);
+      t = last ? t_end : t + h;
+      record(h);
+      after_step(y);
+      // Grow (at most 5×) from the step just taken; a clipped last step does not
+      // shrink the next interval's first try.
+      const double grow = ratio == 0 ? 5.0 : std::min(5.0, 0.9 * std::pow(ratio, -1.0 / (order + 1)));
+      h_ = last ? std::max(h_, h * grow) : h * grow;
+    } else {
+      ++stats_.steps_rejected;
+      const double shrink = std::isfinite(ratio) ? std::max(0.2, 0.9 * std::pow(ratio, -1.0 / order)) : 0.2;
+      h_ = h * shrink;
+      if (!(h_ > 64 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t)))) {
+        std::ostringstream why;
+        why << "step size underflow (error ratio " << ratio
+            << "): the tolerance cannot be met or the derivative is not finite";
+        stop(why.str(), t, h_, err_);
+      }
+    }
+  }
+}
+
+}  // namespace gacompare::core

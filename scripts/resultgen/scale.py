@@ -1,0 +1,34 @@
+"""docs/results/scale.md: boxes of 27 to 10,000 bodies through traditional,
+cga and Bullet (bench/scale/scale.py), and what the narrowphase's reuse saves
+(bench/scale/reuse.py)."""
+import json
+import os
+import re
+
+from .common import strip_command_line
+
+
+def generate(ctx):
+    out = ctx.scratch_dir("scale")
+    size = ["--sizes", "27,125,1000"] + (["--repeat", "1"] if ctx.quick else ["--long", "--repeat", "3"])
+    ctx.run(["python3", "bench/scale/scale.py", "--binary", ctx.gacompare, *size, "--out", out],
+            quote=f"python3 bench/scale/scale.py --binary {ctx.gacompare} {' '.join(size)} --out DIR")
+    with open(os.path.join(out, "scale.md")) as f:
+        scale = strip_command_line(f.read())
+    with open(os.path.join(out, "scale.json")) as f:
+        data = json.load(f)
+    reuse_args = ["--sizes", "125,1000", "--repeat", "1" if ctx.quick else "3", "--duration", "0.2"]
+    reuse = strip_command_line(ctx.run(["python3", "bench/scale/reuse.py", "--binary", ctx.gacompare, *reuse_args]))
+    headline = []
+    largest = str(max(data["sizes"]))
+    r = data["results"][largest]
+    cells = [f"{b} {r[b]['per_simulated_second']:.3g} s" for b in ("traditional", "cga", "bullet") if b in r]
+    if cells:
+        headline.append({"finding": f"{int(largest):,} bodies in a box: run time per simulated second",
+                         "value": ", ".join(cells), "anchor": "#bodies-in-a-box"})
+    for line in scale.splitlines():
+        m = re.match(r"- (\w+): p = ([0-9.]+)", line)
+        if m:
+            headline.append({"finding": f"Cost ∝ N^p from 125 bodies up, {m.group(1)}", "value": f"p = {m.group(2)}",
+                             "anchor": "#bodies-in-a-box"})
+    return {"blocks": {"scale": scale, "reuse": reuse}, "headline": headline}

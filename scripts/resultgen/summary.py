@@ -1,0 +1,55 @@
+"""docs/results/summary.md: every bundled scene through both backends, what
+`bash scripts/run-all.sh` runs, and the verdict per category."""
+import glob
+import json
+import os
+import re
+
+from .common import ROOT
+
+
+def _demote(markdown):
+    """The summary report's headings one level down, under the page's own."""
+    return re.sub(r"^(#+) ", lambda m: "#" + m.group(1) + " ", markdown, flags=re.M)
+
+
+def overall(summary, category):
+    c = summary["categories"].get(category)
+    if not c:
+        return None
+    o = c["overall"]
+    lo, hi = o["ci95"] if o["ci95"] and None not in o["ci95"] else (None, None)
+    interval = f" [{lo:.2f}, {hi:.2f}]" if lo is not None else ""
+    return f"{o['ratio']:.2f}{interval}, {o['verdict']} ({len(c['scenes'])} scenes)"
+
+
+def generate(ctx):
+    out = ctx.scratch_dir("summary")
+    scenes = sorted(glob.glob(os.path.join(ROOT, "data", "scenes", "*.json")))
+    repeat = "5"
+    ctx.run([ctx.gacompare, "compare", *scenes, "--repeat", repeat, "--out", out, "--quiet"],
+            quote=f"{ctx.gacompare} compare data/scenes/*.json --repeat {repeat} --out DIR")
+    with open(os.path.join(out, "report.md")) as f:
+        report = f.read()
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    # The report's own first heading names the folder; the page has its title.
+    report = re.sub(r"^# .*\n+", "", report, count=1)
+    # Its links lead into the report folder, which the page does not carry; its
+    # commit is in the page's provenance.
+    report = re.sub(r"\[([^\]]+)\]\([^)]*report\.md\)", r"\1", report)
+    report = re.sub(r",? commit [0-9a-f]+(?: with uncommitted changes)?", "", report)
+    headline = []
+    for category, label in (("rigid bodies", "Rigid bodies without contact: whole run, cga / traditional at equal tolerance"),
+                            ("collisions", "Scenes with collisions: whole run, cga / traditional")):
+        value = overall(summary, category)
+        if value:
+            headline.append({"finding": label, "value": value, "anchor": ""})
+    same = [s["name"] for s in summary["scenes"] if s["trajectories"] == "identical"]
+    parts = [s for s in summary["scenes"] if s["category"] == "particles"]
+    if parts:
+        headline.append({"finding": "Particle scenes (the same formulas in both backends)",
+                         "value": f"identical trajectories on {sum(s['name'] in same for s in parts)} of {len(parts)}; "
+                                  + (overall(summary, "particles") or ""),
+                         "anchor": ""})
+    return {"blocks": {"report": _demote(report)}, "headline": headline}

@@ -1,0 +1,13 @@
+// tests/stacking_cases.hpp through the cga backend.
+#include "cga/backend.hpp"
+
+#include "../stacking_cases.hpp"
+
+namespace gacompare::testing {
+
+using CgaStacking = StackingFamily<cga::Backend>;
+TEST_P(CgaStacking, ComesToRestWhereStaticsPutsIt) { check_case(); }
+INSTANTIATE_TEST_SUITE_P(Family, CgaStacking, ::testing::ValuesIn(stacking_indices()),
+                         stacking_test_name);
+
+}  // namespace gacompare::testing

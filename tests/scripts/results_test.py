@@ -1,0 +1,111 @@
+#!/usr/bin/env python3
+"""scripts/results.py's machinery and scripts/check-docs.py's anchors, against
+hand-written inputs whose answers are known (ctest -L docs)."""
+import importlib.util
+import os
+import sys
+import unittest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from resultgen import common, contacts, dynamics  # noqa: E402
+
+spec = importlib.util.spec_from_file_location("check_docs", os.path.join(ROOT, "scripts", "check-docs.py"))
+check_docs = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(check_docs)
+
+
+class Fill(unittest.TestCase):
+    PAGE = ("# T\n\n<!-- generated: a -->\nold a\n<!-- end: a -->\n\nprose\n\n"
+            "<!-- generated: b -->\nold b\n<!-- end: b -->\n")
+
+    def test_replaces_the_named_blocks_and_keeps_the_rest(self):
+        out = common.fill(self.PAGE, {"a": "new a"}, "page")
+        self.assertIn("<!-- generated: a -->\nnew a\n<!-- end: a -->", out)
+        self.assertIn("<!-- generated: b -->\nold b\n<!-- end: b -->", out)
+        self.assertIn("\nprose\n", out)
+
+    def test_a_block_the_page_lacks_is_refused(self):
+        with self.assertRaises(SystemExit) as e:
+            common.fill(self.PAGE, {"c": "x"}, "page")
+        self.assertIn("no block c", str(e.exception))
+
+    def test_filling_twice_gives_the_same_page(self):
+        once = common.fill(self.PAGE, {"a": "x", "b": "y"}, "page")
+        self.assertEqual(once, common.fill(once, {"a": "x", "b": "y"}, "page"))
+
+
+class Tables(unittest.TestCase):
+    def test_rows_without_the_rule_line(self):
+        md = "text\n\n| a | b |\n|---|---:|\n| 1 | 2 |\n| 3 | 4 |\n\nafter\n\n| c |\n|---|\n| 5 |\n"
+        self.assertEqual(common.tables(md), [[["a", "b"], ["1", "2"], ["3", "4"]], [["c"], ["5"]]])
+
+    def test_ratio_of_reads_the_median_cell(self):
+        md = "| operation | implementation | ns per op | ratio to matrix |\n|---|---|---:|---:|\n" \
+             "| derivative | matrix | 18.3 (18.0–19.0) | 1.00 (1.00–1.00) |\n" \
+             "| derivative | rotor | 18.8 (18.6–19.3) | 1.02 (0.99–1.06) |\n"
+        self.assertEqual(common.ratio_of(md, "derivative", "rotor"), "1.02 (0.99–1.06)")
+        self.assertIsNone(common.ratio_of(md, "step", "rotor"))
+
+    def test_first_number(self):
+        self.assertEqual(common.first_number("1.5e-03 (rel 2)"), 1.5e-3)
+        self.assertIsNone(common.first_number("–"))
+
+
+class ContactFamilies(unittest.TestCase):
+    TABLE = ("| case | traditional | cga | bullet |\n|---|---|---|---|\n"
+             "| slide/equal/free/turn=none/offset=none (contact_slide) | pass 1e-13 m/s | pass 1e-13 m/s | FAIL 0.1 m/s |\n"
+             "| slide/equal/floor/turn=none/offset=none | pass 1e-13 m/s | FAIL 1 m/s | FAIL 0.2 m/s |\n"
+             "| row/5 | pass 1e-13 | pass 1e-13 | pass 1e-12 |\n"
+             "| stack/5/drop=1mm | pass 1e-8 m | pass 1e-8 m | FAIL 0.1 m |\n")
+
+    def test_counts_per_family_and_backend(self):
+        counts, backends = contacts.counts(self.TABLE)
+        self.assertEqual(backends, ["traditional", "cga", "bullet"])
+        self.assertEqual(counts["slides, free"], {"traditional": [1, 1], "cga": [1, 1], "bullet": [0, 1]})
+        self.assertEqual(counts["slides on a floor"]["cga"], [0, 1])
+        self.assertEqual(counts["rows"]["bullet"], [1, 1])
+        self.assertEqual(counts["stacks"]["bullet"], [0, 1])
+
+    def test_the_total_row(self):
+        _, total, cases = contacts.family_table(self.TABLE, self.TABLE)
+        self.assertEqual(cases, 4)
+        self.assertEqual(total, {"traditional": [4, 4], "cga": [3, 4], "bullet": [1, 4]})
+
+
+class EqualAccuracy(unittest.TestCase):
+    MD = ("### spinning_top\n\n#### Time at equal accuracy\n\n| backend | setting | cga/traditional |\n|---|---|---:|\n"
+          "| traditional | tol 1e-9 | 1 |\n| cga | tol 8e-9 | 0.46 (0.40–0.50) |\n\n"
+          "### dzhanibekov\n\n#### Time at equal accuracy\n\n| backend | setting | cga/traditional |\n|---|---|---:|\n"
+          "| traditional | tol 3e-12 | 1 |\n| cga | tol 1e-11 | 0.68 (0.65–0.75) |\n")
+
+    def test_each_scene_reads_its_own_table(self):
+        self.assertEqual(dynamics._accuracy_ratio(self.MD, "spinning_top"), "0.46 (0.40–0.50)")
+        self.assertEqual(dynamics._accuracy_ratio(self.MD, "dzhanibekov"), "0.68 (0.65–0.75)")
+        self.assertIsNone(dynamics._accuracy_ratio(self.MD, "kepler"))
+
+
+class Anchors(unittest.TestCase):
+    def test_github_slugs(self):
+        self.assertEqual(check_docs.slug("compare --accuracy: time at equal accuracy"),
+                         "compare---accuracy-time-at-equal-accuracy")
+        self.assertEqual(check_docs.slug("The algebra (`cga/algebra/`)"), "the-algebra-cgaalgebra")
+        self.assertEqual(check_docs.slug("Rigid bodies (§2.3)"), "rigid-bodies-23")
+        self.assertEqual(check_docs.slug("[Link](x.md) here"), "link-here")
+
+    def test_repeated_headings_are_numbered_and_fences_skipped(self):
+        text = "# A\n## A\n```\n# not a heading\n```\n## B\n"
+        self.assertEqual(check_docs.anchors(text), {"a", "a-1", "b"})
+
+    def test_named_paths_but_not_patterns(self):
+        found = [m.group(1) for m in check_docs.NAMED_PATH.finditer(
+            "`core/scene.hpp`, `data/scenes/*.json`, `tests/{traditional,cga}/x.cpp`, `cga/algebra/` and `build/ci`")]
+        self.assertEqual(found, ["core/scene.hpp", "cga/algebra/"])
+
+    def test_a_commit_hash_is_found_and_a_word_is_not(self):
+        self.assertTrue(check_docs.HASH.search("regenerated at c9972dd today"))
+        self.assertFalse(check_docs.HASH.search("the folder x__touch_y_-fb2e581c and deadbeef"))
+
+
+if __name__ == "__main__":
+    unittest.main()

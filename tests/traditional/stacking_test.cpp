@@ -1,0 +1,13 @@
+// tests/stacking_cases.hpp through the traditional backend.
+#include "traditional/backend.hpp"
+
+#include "../stacking_cases.hpp"
+
+namespace gacompare::testing {
+
+using TraditionalStacking = StackingFamily<traditional::Backend>;
+TEST_P(TraditionalStacking, ComesToRestWhereStaticsPutsIt) { check_case(); }
+INSTANTIATE_TEST_SUITE_P(Family, TraditionalStacking, ::testing::ValuesIn(stacking_indices()),
+                         stacking_test_name);
+
+}  // namespace gacompare::testing
