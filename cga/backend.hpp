@@ -32,3 +32,10 @@ struct Backend : core::Simulation<VectorOps, RigidBodies, Collide> {
 static_assert(core::Backend<Backend>);
 
 }  // namespace gacompare::cga
+
+// The simulator over this backend is compiled once, in backend.cpp: every test,
+// bench and tool that runs a scene links it instead of instantiating it again.
+namespace gacompare::core {
+extern template Run simulate<cga::Backend>(const Scene&, std::shared_ptr<const Model>);
+extern template Run simulate<cga::Backend>(const Scene&);
+}  // namespace gacompare::core
