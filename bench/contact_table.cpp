@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "core/dynamics/simulator.hpp"
 #include "traditional/backend.hpp"
+#include "family_table.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -119,9 +120,6 @@ int main(int argc, char** argv) {
     }
     std::printf("\n");
   }
-  std::printf("\nPassed:");
-  for (const auto& b : backends) std::printf(" %s %d/%d (%.1f s of runs);", b.c_str(), passed[b], cases, wall[b]);
-  std::printf("\n\nWhy each failure failed (the worst check):\n\n");
-  for (const auto& f : failures) std::printf("- %s\n", f.c_str());
+  bench::print_tally(backends, passed, wall, cases, failures, "the worst check");
   return 0;
 }

@@ -16,6 +16,7 @@
 #include "answers/stacking_family.hpp"
 #include "cga/backend.hpp"
 #include "compare/bullet_world.hpp"
+#include "family_table.hpp"
 #include "core/dynamics/simulator.hpp"
 #include "core/error.hpp"
 #include "traditional/backend.hpp"
@@ -111,9 +112,6 @@ int main(int argc, char** argv) {
     }
     std::printf("\n");
   }
-  std::printf("\nPassed:");
-  for (const auto& c : columns) std::printf(" %s %d/%d (%.1f s of runs);", c.c_str(), passed[c], cases, wall[c]);
-  std::printf("\n\nWhy each failure failed (the worst check, then the first):\n\n");
-  for (const auto& f : failures) std::printf("- %s\n", f.c_str());
+  bench::print_tally(columns, passed, wall, cases, failures, "the worst check, then the first");
   return 0;
 }
