@@ -17,19 +17,6 @@ const std::vector<std::string>& backend_names() {
   return names;
 }
 
-namespace {
-// The scene's model for runs given none; an error names the scene's file and
-// body as the simulator's own (core::located).
-std::shared_ptr<const core::Model> compiled(const core::Scene& scene) {
-  try {
-    return std::make_shared<const core::Model>(core::compile(scene));
-  } catch (const Error& e) {
-    throw core::located(scene, e);
-  }
-}
-
-}  // namespace
-
 core::Run run_backend(const core::Scene& scene, std::shared_ptr<const core::Model> model, std::string_view backend) {
   if (backend == traditional::Backend::name) return core::simulate<traditional::Backend>(scene, std::move(model));
   if (backend == cga::Backend::name) return core::simulate<cga::Backend>(scene, std::move(model));
@@ -38,7 +25,7 @@ core::Run run_backend(const core::Scene& scene, std::shared_ptr<const core::Mode
 }
 
 core::Run run_backend(const core::Scene& scene, std::string_view backend) {
-  return run_backend(scene, compiled(scene), backend);
+  return run_backend(scene, core::compiled_model(scene), backend);
 }
 
 namespace {
@@ -87,7 +74,7 @@ SceneResult compare_scene(const core::Scene& written, std::shared_ptr<const core
   const core::Scene scene = core::expand_generators(written);
   const std::vector<std::string> backends = backends_for(scene, requested, selection, model.get());
   // Generators add particles only: a model compiled from the written scene is the expanded one's.
-  if (!model) model = compiled(scene);
+  if (!model) model = core::compiled_model(scene);
   SceneResult result{scene, std::vector<BackendResult>(backends.size()), model};
   for (int r = 0; r < repeats; ++r) {
     for (std::size_t k = 0; k < backends.size(); ++k) {

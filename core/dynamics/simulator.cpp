@@ -49,6 +49,14 @@ Error located(const Scene& scene, const Error& e) {
   return Error(e.kind(), where + what);
 }
 
+std::shared_ptr<const Model> compiled_model(const Scene& scene) {
+  try {
+    return std::make_shared<const Model>(compile(scene));
+  } catch (const Error& e) {
+    throw located(scene, e);
+  }
+}
+
 std::vector<int> particle_layout(std::size_t particles) {
   std::vector<int> v(6 * particles, -1);
   for (std::size_t i = 0; i < particles; ++i)

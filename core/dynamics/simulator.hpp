@@ -68,6 +68,11 @@ void check_implemented(const Scene& scene);
 // names the file already.
 Error located(const Scene& scene, const Error& e);
 
+// The scene's model, compiled once for every run that reads it (both backends,
+// Bullet, every repeat and solver setting: it holds no solver or rotation
+// choice); an error is located as above.
+std::shared_ptr<const Model> compiled_model(const Scene& scene);
+
 // velocity_of for a state of particles [x (3), v (3)] each.
 std::vector<int> particle_layout(std::size_t particles);
 
@@ -203,13 +208,7 @@ Run simulate(const Scene& scene, std::shared_ptr<const Model> compiled) {
 // The same, compiling the scene's model for this run alone.
 template <Backend B>
 Run simulate(const Scene& scene) {
-  std::shared_ptr<const Model> compiled;
-  try {
-    compiled = std::make_shared<const Model>(compile(scene));
-  } catch (const Error& e) {
-    throw located(scene, e);
-  }
-  return simulate<B>(scene, std::move(compiled));
+  return simulate<B>(scene, compiled_model(scene));
 }
 
 }  // namespace gacompare::core
