@@ -8,6 +8,7 @@
 #include "core/model/generators.hpp"
 #include "core/read_file.hpp"
 #include "core/dynamics/ode.hpp"
+#include "core/dynamics/simulator.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -126,7 +127,7 @@ AccuracyPlan find_equal_accuracy(const core::Scene& written, double target, cons
   if (const auto why = accuracy_refusal(written); !why.empty()) throw input_error(why);
   const core::Scene scene = accuracy_scene(written);
   // One model for every trial: they change the solver's settings only.
-  const auto model = std::make_shared<const core::Model>(core::compile(scene));
+  const auto model = core::compiled_model(scene);
   AccuracyPlan plan;
   plan.scene = scene.name;
   plan.sha256 = scene.sha256;
@@ -216,7 +217,7 @@ SceneResult compare_at_accuracy(const core::Scene& written, const AccuracyPlan& 
                                 const Progress& progress) {
   const core::Scene scene = accuracy_scene(written);
   SceneResult result{scene, std::vector<BackendResult>(plan.backends.size()),
-                     std::make_shared<const core::Model>(core::compile(scene))};
+                     core::compiled_model(scene)};
   const std::size_t n = plan.backends.size();
   for (int r = 0; r < repeats; ++r) {
     for (std::size_t k = 0; k < n; ++k) {
