@@ -23,7 +23,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -70,12 +69,9 @@ int main(int argc, char** argv) {
       if (value != "manifold" && value != "report") return usage();
       method = value == "report" ? core::ContactMethod::report : core::ContactMethod::manifold;
     } else if (arg == "--backends") {
-      backends.clear();
-      std::stringstream list(value);
-      for (std::string b; std::getline(list, b, ',');) {
-        if (b != "traditional" && b != "cga" && b != "bullet") return usage();
-        backends.push_back(b);
-      }
+      const auto list = bench::column_list(value, {"traditional", "cga", "bullet"});
+      if (!list) return usage();
+      backends = *list;
     } else {
       return usage();
     }

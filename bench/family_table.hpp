@@ -1,13 +1,28 @@
 #pragma once
-// The end of a family table (contact_table, stacking_table): how many cases
-// each column passed with the seconds its runs took, then why each failure
-// failed.
+// What the family tables (contact_table, stacking_table) share: their list of
+// columns from the command line, and their end: how many cases each column
+// passed with the seconds its runs took, then why each failure failed.
+#include <algorithm>
 #include <cstdio>
 #include <map>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
 namespace gacompare::bench {
+
+// A comma-separated list whose every item is one of `allowed`; nullopt otherwise.
+inline std::optional<std::vector<std::string>> column_list(const std::string& value,
+                                                           const std::vector<std::string>& allowed) {
+  std::vector<std::string> out;
+  std::stringstream list(value);
+  for (std::string c; std::getline(list, c, ',');) {
+    if (std::find(allowed.begin(), allowed.end(), c) == allowed.end()) return std::nullopt;
+    out.push_back(c);
+  }
+  return out;
+}
 
 inline void print_tally(const std::vector<std::string>& columns, const std::map<std::string, int>& passed,
                         const std::map<std::string, double>& wall, int cases, const std::vector<std::string>& failures,

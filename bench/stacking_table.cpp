@@ -23,7 +23,6 @@
 
 #include <cstdio>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -59,12 +58,9 @@ int main(int argc, char** argv) {
     if (arg == "--filter") {
       filter = value;
     } else if (arg == "--columns") {
-      columns.clear();
-      std::stringstream list(value);
-      for (std::string c; std::getline(list, c, ',');) {
-        if (c != "traditional" && c != "cga" && c != "bullet" && c != "traditional-pgs" && c != "cga-pgs") return usage();
-        columns.push_back(c);
-      }
+      const auto list = bench::column_list(value, {"traditional", "cga", "bullet", "traditional-pgs", "cga-pgs"});
+      if (!list) return usage();
+      columns = *list;
     } else {
       return usage();
     }

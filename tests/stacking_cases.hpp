@@ -4,7 +4,8 @@
 // solver the family is built for and held to its statics answer at every
 // sample. Instantiated by tests/{traditional,cga}/stacking_test.cpp under the
 // `stacking` label; the long cases (tall columns, pyramids of 5 layers and
-// more) are left out by GACOMPARE_QUICK_TESTS=1.
+// more) are left out by GACOMPARE_QUICK_TESTS=1, and the open ones
+// (StackCase::open) are skipped with their reason unless GACOMPARE_OPEN_CASES=1.
 #include "core/dynamics/simulator.hpp"
 #include "answers/stacking_family.hpp"
 
