@@ -195,12 +195,12 @@ int check_scenes(const std::vector<core::Compiled>& scenes, const fs::path& base
     const auto baseline = read_baseline(file);
     if (!baseline && !update)
       throw input_error(file.string() + ": no baseline for scene '" + scene.name + "' (store one with --update)");
-    // Our two backends only: their baselines and their agreement are what check
+    // Our three backends only: their baselines and their agreement are what check
     // guards. Bullet's trajectories differ from ours by design (another
     // integrator, another contact model: compare/bullet_world.cpp), so neither a
     // Bullet baseline nor "the backends agree" with Bullet in it would mean a
     // regression; `gacompare compare` sets Bullet beside them instead.
-    const auto result = compare::compare_scene(scene, scenes[k].model, {"traditional", "cga"}, repeats, compare::Selection::exactly,
+    const auto result = compare::compare_scene(scene, scenes[k].model, {"traditional", "cga", "pga"}, repeats, compare::Selection::exactly,
                                                progress_line("check " + scene.name, k, scenes.size(), quiet));
     auto scene_lines = compare::check_scene(result, update ? std::nullopt : baseline, max_time_ratio);
     lines.insert(lines.end(), scene_lines.begin(), scene_lines.end());
@@ -488,7 +488,7 @@ int main(int argc, char** argv) {
   int run_repeat = 1;
   auto* run = app.add_subcommand("run", "run one scene through one backend");
   run->add_option("scene", run_scene, "scene file (JSON)")->required();
-  run->add_option("--backend", run_backend, "traditional, cga or bullet")->required()->check(backend_check);
+  run->add_option("--backend", run_backend, "traditional, cga, pga or bullet")->required()->check(backend_check);
   run->add_option("--out", run_out, "report folder (default reports/<scene>-<date>)")->default_str("");
   run->add_option("--repeat", run_repeat, "repeats, for the timing spread")->check(repeat_check);
 

@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/model/generators.hpp"
 #include "core/dynamics/simulator.hpp"
+#include "pga/backend.hpp"
 #include "traditional/backend.hpp"
 
 #include <algorithm>
@@ -13,15 +14,16 @@ namespace gacompare::compare {
 
 const std::vector<std::string>& backend_names() {
   static const std::vector<std::string> names{std::string(traditional::Backend::name), std::string(cga::Backend::name),
-                                              "bullet"};
+                                              std::string(pga::Backend::name), "bullet"};
   return names;
 }
 
 core::Run run_backend(const core::Scene& scene, std::shared_ptr<const core::Model> model, std::string_view backend) {
   if (backend == traditional::Backend::name) return core::simulate<traditional::Backend>(scene, std::move(model));
   if (backend == cga::Backend::name) return core::simulate<cga::Backend>(scene, std::move(model));
+  if (backend == pga::Backend::name) return core::simulate<pga::Backend>(scene, std::move(model));
   if (backend == "bullet") return simulate_bullet(scene, *model);  // throws input_error where Bullet cannot run it
-  throw input_error("unknown backend '" + std::string(backend) + "' (expected traditional, cga or bullet)");
+  throw input_error("unknown backend '" + std::string(backend) + "' (expected traditional, cga, pga or bullet)");
 }
 
 core::Run run_backend(const core::Scene& scene, std::string_view backend) {

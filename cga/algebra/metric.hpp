@@ -7,6 +7,8 @@
 // Cl(3,0): e1 e2 e3, all squaring to +1.
 // Cl(4,1): e1 e2 e3 e (+1) ē (−1), bits 0..4, so a Cl(3,0) blade has the same
 // bitmask in Cl(4,1) and embedding is a copy (docs/architecture.md "Conventions").
+// Cl(3,0,1): e0 (squaring to 0) e1 e2 e3, bits 0..3: the degenerate vectors
+// come first, as the plane-based literature writes e0 first (pga/algebra/cl301.hpp).
 #include <bit>
 #include <cstdint>
 #include <initializer_list>
@@ -17,25 +19,28 @@ namespace gacompare::cga {
 // vectors) is present. 2^5 = 32 blades for Cl(4,1), hence 64 bits of room.
 using BladeSet = std::uint64_t;
 
-template <int P, int Q>
+template <int P, int Q, int R = 0>
 struct Algebra {
   static constexpr int p = P;
   static constexpr int q = Q;
-  static constexpr int dim = P + Q;
+  static constexpr int r = R;  // vectors squaring to 0
+  static constexpr int dim = P + Q + R;
   static constexpr unsigned blade_count = 1u << dim;
   static constexpr unsigned pseudoscalar = blade_count - 1;
   static constexpr BladeSet all = blade_count == 64 ? ~BladeSet{0} : (BladeSet{1} << blade_count) - 1;
-  // Square of basis vector i: the first P square to +1, the last Q to −1.
-  static constexpr int metric(int i) { return i < P ? 1 : -1; }
+  // Square of basis vector i: the first R square to 0, the next P to +1, the last Q to −1.
+  static constexpr int metric(int i) { return i < R ? 0 : i < R + P ? 1 : -1; }
 };
 
 using Cl3 = Algebra<3, 0>;
 using Cl41 = Algebra<4, 1>;
+using Cl301 = Algebra<3, 0, 1>;
 
 constexpr int grade_of(unsigned blade) { return std::popcount(blade); }
 
 // Sign of the product of basis blades a and b: (−1)^(swaps to sort the vectors)
 // times the squares of the vectors the two share. The product blade is a ^ b.
+// 0 when they share a vector squaring to 0 (the product vanishes).
 template <class A>
 constexpr int blade_sign(unsigned a, unsigned b) {
   int swaps = 0;
@@ -82,6 +87,9 @@ constexpr int conjugate_sign(int k) { return reverse_sign(k) * involute_sign(k);
 //  scalar            ⟨ab⟩₀
 enum class Product { geometric, outer, left_contraction, right_contraction, inner, scalar };
 
+// Whether product p keeps the pair of blades (a, b), by grade alone: a
+// degenerate metric can still make the term zero (blade_sign 0), which the
+// tables test separately (multivector.hpp, term_exists).
 constexpr bool product_keeps(Product p, unsigned a, unsigned b) {
   switch (p) {
     case Product::geometric: return true;
@@ -92,6 +100,12 @@ constexpr bool product_keeps(Product p, unsigned a, unsigned b) {
     case Product::scalar: return a == b;
   }
   return false;
+}
+
+// A term of product p that is not identically zero.
+template <class A>
+constexpr bool term_exists(Product p, unsigned a, unsigned b) {
+  return product_keeps(p, a, b) && blade_sign<A>(a, b) != 0;
 }
 
 }  // namespace gacompare::cga

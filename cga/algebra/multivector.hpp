@@ -79,7 +79,7 @@ constexpr BladeSet product_blades(Product p, BladeSet sa, BladeSet sb, BladeSet 
   BladeSet r = 0;
   for_each_blade(sa, [&](unsigned a) {
     for_each_blade(sb, [&](unsigned b) {
-      if (product_keeps(p, a, b)) r |= BladeSet{1} << (a ^ b);
+      if (term_exists<A>(p, a, b)) r |= BladeSet{1} << (a ^ b);
     });
   });
   return r & keep;
@@ -101,7 +101,7 @@ struct Table {
       bool first = true;
       for_each_blade(SA, [&](unsigned a) {
         const unsigned b = a ^ o;
-        if (((SB >> b) & 1u) && product_keeps(P, a, b)) {
+        if (((SB >> b) & 1u) && term_exists<A>(P, a, b)) {
           f(a, b, o, first);
           first = false;
         }
@@ -287,6 +287,7 @@ constexpr Multivector<A, BladeSet{1} << A::pseudoscalar> pseudoscalar() { return
 // I⁻¹ = I / I² (I² is a scalar, ±1): in Cl(3,0) and Cl(4,1) alike I² = −1, so I⁻¹ = −I.
 template <class A>
 constexpr Multivector<A, BladeSet{1} << A::pseudoscalar> pseudoscalar_inverse() {
+  static_assert(A::r == 0, "a degenerate algebra's pseudoscalar has no inverse: use its complement (pga/algebra/cl301.hpp)");
   constexpr double ii = blade_sign<A>(A::pseudoscalar, A::pseudoscalar);
   return {{1.0 / ii}};
 }

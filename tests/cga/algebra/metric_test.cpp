@@ -57,6 +57,8 @@ void check_table() {
 
 TEST(Metric, Cl3BladeProductsMatchBruteForce) { check_table<Cl3>(); }
 TEST(Metric, Cl41BladeProductsMatchBruteForce) { check_table<Cl41>(); }
+// The degenerate metric of plane-based GA: a product sharing e0 is 0 in both.
+TEST(Metric, Cl301BladeProductsMatchBruteForce) { check_table<Cl301>(); }
 
 template <unsigned A, unsigned B, class Alg>
 void check_sparse_pair() {
