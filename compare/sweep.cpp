@@ -1,6 +1,7 @@
 #include "compare/sweep.hpp"
 
 #include "cga/backend.hpp"
+#include "pga/backend.hpp"
 #include "compare/escape.hpp"
 #include "compare/files.hpp"
 #include "compare/machine.hpp"
@@ -251,29 +252,32 @@ json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& ref, 
     cells.push_back(cell("traditional", s, run, ref, secs));
   } else {
     // Every variant in turn, the order rotated each repeat so drift hits them
-    // alike: both backends, and for a scene of bodies the traditional backend
-    // with its other rotation representation too (matrix, quaternion and rotor
-    // in one diagram).
+    // alike: the three backends, and for a scene of bodies the traditional
+    // backend with its other rotation representation too (matrix, quaternion,
+    // rotor and motor in one diagram).
     struct Variant {
       std::string label;
       core::Scene scene;
-      bool cga;
+      std::string backend;
       std::vector<double> secs;
       core::Run run;
     };
-    std::vector<Variant> variants = {{"traditional", s, false, {}, {}}, {"cga", s, true, {}, {}}};
+    std::vector<Variant> variants = {{"traditional", s, "traditional", {}, {}}, {"cga", s, "cga", {}, {}},
+                                     {"pga", s, "pga", {}, {}}};
     if (!s.bodies.empty()) {
       core::Scene other = s;
       other.rigid_body.rotation =
           s.rigid_body.rotation == core::Rotation::matrix ? core::Rotation::quaternion : core::Rotation::matrix;
       variants.insert(variants.begin() + 1,
                       {std::string("traditional-") + (other.rigid_body.rotation == core::Rotation::matrix ? "matrix" : "quaternion"),
-                       other, false, {}, {}});
+                       other, "traditional", {}, {}});
     }
     try {
       const auto model = core::compiled_model(swept);
       auto run_one = [&model](Variant& v, std::vector<double>& secs) {
-        return v.cga ? timed<cga::Backend>(v.scene, model, secs) : timed<traditional::Backend>(v.scene, model, secs);
+        if (v.backend == "cga") return timed<cga::Backend>(v.scene, model, secs);
+        if (v.backend == "pga") return timed<pga::Backend>(v.scene, model, secs);
+        return timed<traditional::Backend>(v.scene, model, secs);
       };
       std::vector<double> warm;
       for (auto& v : variants) run_one(v, warm);

@@ -59,9 +59,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--gacompare", default=os.path.join(ROOT, "build", "release", "compare", "gacompare"))
     args = ap.parse_args()
-    reps = {"matrix": ("matrix", "traditional"), "quaternion": ("quaternion", "traditional"), "rotor": ("matrix", "cga")}
-    print("| scene | orientation error | matrix steps | rotor / matrix | quaternion / matrix |")
-    print("|---|---:|---:|---:|---:|")
+    reps = {"matrix": ("matrix", "traditional"), "quaternion": ("quaternion", "traditional"), "rotor": ("matrix", "cga"),
+            "motor": ("matrix", "pga")}
+    print("| scene | orientation error | matrix steps | rotor / matrix | motor / matrix | quaternion / matrix |")
+    print("|---|---:|---:|---:|---:|---:|")
     with tempfile.TemporaryDirectory() as tmp:
         for scene in ["spinning_top", "dzhanibekov"]:
             ref, _ = run(args.gacompare, tmp, scene, 1e-14, "quaternion", "traditional")
@@ -72,8 +73,9 @@ def main():
                     curves[name].append((angle(q, ref), n))
             for error, n in curves["matrix"]:
                 r, q = steps_at(curves["rotor"], error), steps_at(curves["quaternion"], error)
+                mo = steps_at(curves["motor"], error)
                 cell = lambda x: f"{x / n:.2f}" if x else "–"
-                print(f"| {scene} | {error:.1e} | {n} | {cell(r)} | {cell(q)} |")
+                print(f"| {scene} | {error:.1e} | {n} | {cell(r)} | {cell(mo)} | {cell(q)} |")
 
 
 if __name__ == "__main__":

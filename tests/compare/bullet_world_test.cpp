@@ -334,10 +334,10 @@ TEST(BulletWorld, RunnerRunsBulletWhereItCan) {
       "bodies": [{"name": "box", "shape": {"box": [1, 1, 1]}, "mass": 1, "position": [0, 0, 0]}])");
   const auto particles = scene(R"("duration": 0.1, "output": {"every": 0.1}, "effects": [{"type": "collisions"}],
       "particles": [{"name": "bob", "mass": 1, "position": [0, 0, 0]}])");
-  EXPECT_EQ(backends_for(free_flight, names), (std::vector<std::string>{"traditional", "cga"}));
-  EXPECT_EQ(backends_for(colliding, names), (std::vector<std::string>{"traditional", "cga", "bullet"}));
-  EXPECT_EQ(backends_for(particles, names), (std::vector<std::string>{"traditional", "cga"}));
-  // Named exactly (the CLI's --backends), the list is run as given, all three included.
+  EXPECT_EQ(backends_for(free_flight, names), (std::vector<std::string>{"traditional", "cga", "pga"}));
+  EXPECT_EQ(backends_for(colliding, names), (std::vector<std::string>{"traditional", "cga", "pga", "bullet"}));
+  EXPECT_EQ(backends_for(particles, names), (std::vector<std::string>{"traditional", "cga", "pga"}));
+  // Named exactly (the CLI's --backends), the list is run as given, Bullet included.
   EXPECT_EQ(backends_for(free_flight, {"bullet"}, Selection::exactly), std::vector<std::string>{"bullet"});
   EXPECT_EQ(backends_for(free_flight, names, Selection::exactly), names);
   EXPECT_EQ(backends_for(particles, {"traditional", "cga"}, Selection::exactly),

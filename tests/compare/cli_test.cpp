@@ -205,7 +205,7 @@ TEST(Cli, OptionsBeforeTheScenesLeaveThemAloneAndHelpShowsDefaults) {
   EXPECT_EQ(j["runs"][0]["backend"], "cga");
   const Result help = gacompare("compare --help");
   EXPECT_NE(help.out.find("--repeat INT=5"), std::string::npos) << help.out;
-  EXPECT_NE(help.out.find("--backends TEXT=[traditional,cga,bullet]"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("--backends TEXT=[traditional,cga,pga,bullet]"), std::string::npos) << help.out;
   EXPECT_NE(gacompare("sweep --help").out.find("--repeat INT=3"), std::string::npos);
 }
 
