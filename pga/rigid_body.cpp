@@ -91,20 +91,26 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     if (body.inv_mass == 0) continue;  // static: never moves
     const Motor mo = motor_at(y, at.motor);
     const Mat r = rotation_matrix(mo);  // exact for a drifted motor (cl301.hpp)
-    const Line rate = inverse_inertia(body, r, line_at(y, at.momentum));
-    const Vec3 w = line_direction(rate), v = line_moment(rate);
+    const Line momentum = line_at(y, at.momentum);
+    // The rate in the body's frame, V_b = R̃ V R: ω_b = I⁻¹ Rᵀ L, v_b = Rᵀ v.
+    const Vec3 wb = body.inv_inertia * (r.transpose() * line_moment(momentum));
+    const Vec3 v = body.inv_mass * line_direction(momentum);
     // Forces as lines through the centre's frame; their sum is Π̇.
     const core::BodyEffects& fx = m.effects;
     Line wrench{};
     if (fx.has_gravity) wrench += line(body.mass * fx.gravity, Vec3::Zero());  // through the centre
-    if (fx.has_linear_drag) wrench -= line(fx.linear_k * v, fx.linear_k_angular * w);
-    if (fx.has_quadratic_drag) wrench -= line(fx.quadratic_k * v.norm() * v, fx.quadratic_k_angular * w.norm() * w);
+    if (fx.has_linear_drag || fx.has_quadratic_drag) {
+      const Vec3 w = r * wb;
+      if (fx.has_linear_drag) wrench -= line(fx.linear_k * v, fx.linear_k_angular * w);
+      if (fx.has_quadratic_drag) wrench -= line(fx.quadratic_k * v.norm() * v, fx.quadratic_k_angular * w.norm() * w);
+    }
     for (const auto& push : fx.pushes)
       if (push.body == b && t >= push.from && t < push.until)
         wrench += join(point(r * push.point), direction(push.force));  // F = X ∨ D
-    // Ṁ = −½ V_w M with V_w the rate about the world origin (moment v + x × ω).
-    const Line world = line(w, v + translation(mo).cross(w));
-    put(dydt, at.motor, cga::widen<Motor::blades>(-0.5 * (world * mo)));
+    // Ṁ = −½ V_w M = −½ M V_b (V_w M = T V T̃ T R = T V R = M R̃ V R): the body
+    // frame's rate needs no translation read back from M, and the product
+    // scales with |M| as the quaternion's q̇ does with |q|.
+    put(dydt, at.motor, cga::widen<Motor::blades>(-0.5 * (mo * line(wb, r.transpose() * v))));
     put(dydt, at.momentum, wrench);
   }
 }

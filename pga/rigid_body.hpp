@@ -13,7 +13,8 @@
 //        is the wrench: gravity acts on a line through the centre;
 //   V = A⁻¹[Π]: the rate line (direction ω, moment v) from the inertia map,
 //        which swaps a line's parts: ω = I⁻¹ L (world), v = P/m;
-//   Ṁ = −½ V_w M, V_w = T V T̃ the rate about the world origin (moment v + x × ω).
+//   Ṁ = −½ V_w M, V_w = T V T̃ the rate about the world origin (moment
+//        v + x × ω); computed as −½ M V_b with the body frame's rate R̃ V R.
 // The report (§2.3.2) integrates a rotor and a position separately; the motor
 // holds both, so one product moves the body. Why the centre's frame and not
 // the world origin's for Π: the angular momentum about the origin, L + x × P,
