@@ -23,7 +23,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from resultgen import algebra, bullet, collisions, contacts, dynamics, scale, stacking, summary  # noqa: E402
+from resultgen import algebra, bullet, collisions, contacts, dynamics, operations, scale, stacking, summary  # noqa: E402
 from resultgen.common import RESULTS, ROOT, Context, Provenance, fill, write_page  # noqa: E402
 
 # name: (what it measures, generator). The order is the README table's.
@@ -37,8 +37,11 @@ PAGES = {
     "bullet": ("the collision scenes against Bullet run whole", bullet.generate),
     "scale": ("boxes of 27 to 10,000 bodies", scale.generate),
     "algebra": ("the algebra and the conformal geometry against their twins", algebra.generate),
+    "operations": ("multiplies and adds per operation in the compiled code, each algebra", operations.generate),
     "meshes": ("mass properties by the report's voxels against exact integrals; hulls", dynamics.meshes),
 }
+# Pages that run no built binary (a compiler and objdump only).
+WITHOUT_BUILD = {"operations"}
 HEADLINE = os.path.join(RESULTS, "headline.json")
 README = os.path.join(ROOT, "README.md")
 
@@ -81,7 +84,8 @@ def main():
     if unknown:
         print(f"results: no page {', '.join(unknown)} (pages: {', '.join(PAGES)}, readme)", file=sys.stderr)
         return 2
-    if any(p in PAGES for p in wanted) and not os.access(os.path.join(ROOT, args.build, "compare", "gacompare"), os.X_OK):
+    needs_build = any(p in PAGES and p not in WITHOUT_BUILD for p in wanted)
+    if needs_build and not os.access(os.path.join(ROOT, args.build, "compare", "gacompare"), os.X_OK):
         print(f"results: {args.build}/compare/gacompare is not built: run `bash scripts/build.sh ci` first",
               file=sys.stderr)
         return 2
