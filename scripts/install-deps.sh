@@ -4,6 +4,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git
+  binutils                 # objdump: scripts/count-flops.py (build-essential pulls it in; named for the reader)
   ccache                   # reuses objects across checkouts; the build works without it
   libeigen3-dev            # Eigen 3.4: traditional backend
   libbullet-dev            # Bullet, double precision build (pkg-config bullet-float64)
