@@ -189,7 +189,9 @@ inline Eigen::Matrix3d rotation_matrix(const Motor& m) {
 // s the scalar, q = (e23, −e13, e12) the rotation part, u = (e01, e02, e03) the
 // ideal part and p the e0123 part of M:
 //   c = q × x + u,   x' = x + 2(q × c − s c − p q)
-// 21 multiplies and 18 adds (counted in the compiled code: scripts/count-flops.sh).
+// 39 operations: 21 multiplies and 18 adds written out, which the compiler
+// emits as 18 and 21 (x · 2 becomes x + x; scripts/count-flops.py counts the
+// compiled code, docs/results/operations.md).
 // The same as the quaternion's x + 2w(k × x) + 2k × (k × x) plus the
 // translation, with the translation folded into the cross products.
 inline Vec3 apply(const Motor& m, const Vec3& x) {
