@@ -142,10 +142,11 @@ document.getElementById("replay").addEventListener("load", function () {
   ASSERT_EQ(answer.rfind("{", 0), 0u) << answer;  // not "no answer" nor "error: ..."
   const auto j = nlohmann::json::parse(answer);
   EXPECT_EQ(j["frames"], 1251);  // every sample of 2.5 s at 0.002 s: under the 2,000-frame cap
-  ASSERT_EQ(j["views"].size(), 3u);  // Bullet runs this collision scene beside our two
+  ASSERT_EQ(j["views"].size(), 4u);  // Bullet runs this collision scene beside our three
   EXPECT_EQ(j["views"][0]["backend"], "traditional");
   EXPECT_EQ(j["views"][1]["backend"], "cga");
-  EXPECT_EQ(j["views"][2]["backend"], "bullet");
+  EXPECT_EQ(j["views"][2]["backend"], "pga");
+  EXPECT_EQ(j["views"][3]["backend"], "bullet");
   for (const auto& v : j["views"]) {
     const double n = v["pixels"].get<double>();
     // The 0.2 m cube covers 6.4% of each view at t = 0 and 4% resting at the
