@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <span>
 #include <sstream>
 
 namespace gacompare::compare {
@@ -36,9 +37,9 @@ std::vector<double> total_seconds(const BackendResult& b) {
   return v;
 }
 
-// cga/traditional over paired repeats (repeat i of one against repeat i of the
-// other, run back to back): the median ratio and its min–max, like hyperfine's
-// "Relative ± σ" but robust to the odd slow repeat.
+// One backend's time over another's, over paired repeats (repeat i of one
+// against repeat i of the other, run back to back): the median ratio and its
+// min–max, like hyperfine's "Relative ± σ" but robust to the odd slow repeat.
 Spread paired_ratio(const std::vector<double>& num, const std::vector<double>& den) {
   std::vector<double> r;
   for (std::size_t i = 0; i < std::min(num.size(), den.size()); ++i)
@@ -60,13 +61,30 @@ const BackendResult* find(const SceneResult& r, std::string_view name) {
   return nullptr;
 }
 
-std::string header(const MachineInfo& m, int repeats) {
+// "a", "a and b", "a, b and c".
+std::string and_list(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == items.size() ? " and " : ", ") + items[i];
+  return out;
+}
+std::string joined(const std::vector<std::string>& items, const std::string& sep) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? sep : "") + items[i];
+  return out;
+}
+
+// The page's opening lines; `pairs`: the ratios it gives, each named.
+std::string header(const MachineInfo& m, int repeats, std::span<const BackendPair> pairs) {
+  std::vector<std::string> ratios;
+  for (const BackendPair p : pairs) ratios.push_back(std::string(p.numerator) + "/" + std::string(p.denominator));
   std::ostringstream o;
   o << "gacompare " << tool_version() << " (" << m.build_type << ", " << m.compiler << ", commit "
     << m.build.commit.substr(0, 12) << (m.build.dirty == "yes" ? " with uncommitted changes" : m.build.dirty == "no" ? "" : ", tree state unknown")
     << ") on " << m.cpu << " (" << m.usable_cpus << " CPUs usable, load average " << fmt("%.2f", m.load_average[0])
     << " at the start), " << m.date << ". Times are medians over " << repeats
-    << " repeats, backends interleaved, with min–max in brackets; ratios are cga/traditional over paired repeats.\n";
+    << " repeats, backends interleaved, with min–max in brackets"
+    << (ratios.empty() ? "" : "; ratios are " + and_list(ratios) + " over paired repeats") << ".\n";
   return o.str();
 }
 }  // namespace
@@ -81,12 +99,13 @@ std::string format_seconds(double s) {
 }
 
 std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, int repeats) {
+  const std::vector<BackendPair> pairs = pairs_present(std::span(&r, 1));
   std::ostringstream o;
   o << "# " << md_text(r.scene.name) << "\n\n";
   if (!r.scene.description.empty()) o << md_text(r.scene.description) << "\n\n";
   o << "Scene " << md_text(r.scene.file.filename().string()) << " (sha256 " << r.scene.sha256.substr(0, 12) << "…), "
     << r.scene.duration << " s simulated, solver `" << core::to_string(r.scene.solver.method) << "`.\n"
-    << header(machine, repeats) << "\n";
+    << header(machine, repeats, pairs) << "\n";
 
   for (const auto& b : r.backends)
     if (b.run.error) o << "**" << md_text(b.run.backend) << " stopped early:** " << md_text(*b.run.error) << "\n\n";
@@ -106,14 +125,20 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
       << (bullet ? " (Bullet finds and answers contacts inside its own step, all timed as `integrate`)" : "") << ".\n\n";
   o << "| stage |";
   for (const auto& b : r.backends) o << " " << b.run.backend << " | calls | share |";
-  const BackendResult* trad = find(r, "traditional");
-  const BackendResult* cga = find(r, "cga");
-  const bool ratio = trad && cga;
-  if (ratio) o << " cga / traditional |";
+  for (const BackendPair p : pairs) o << " " << p.label() << " |";
   o << "\n|---|";
   for (std::size_t i = 0; i < r.backends.size(); ++i) o << "---:|---:|---:|";
-  if (ratio) o << "---:|";
+  for (std::size_t i = 0; i < pairs.size(); ++i) o << "---:|";
   o << "\n";
+  // One ratio cell per pair: `seconds` gives a backend's times of the row.
+  const auto ratio_cells = [&](auto seconds, auto ran) {
+    for (const BackendPair p : pairs) {
+      const BackendResult& num = *find(r, p.numerator);
+      const BackendResult& den = *find(r, p.denominator);
+      o << " " << (ran(num) && ran(den) ? ratio_cell(paired_ratio(seconds(num), seconds(den))) : std::string("–"))
+        << " |";
+    }
+  };
   for (int k = 0; k < core::kStageCount; ++k) {
     const auto s = static_cast<Stage>(k);
     bool any = false;
@@ -131,17 +156,13 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
       o << " " << time_cell(stage_seconds(b, s)) << " | " << b.run.profile[s].calls << " | "
         << fmt("%.0f%%", 100 * share) << " |";
     }
-    if (ratio)
-      o << " "
-        << (cga->run.profile.ran(s) && trad->run.profile.ran(s)
-                ? ratio_cell(paired_ratio(stage_seconds(*cga, s), stage_seconds(*trad, s)))
-                : std::string("–"))
-        << " |";
+    ratio_cells([&](const BackendResult& b) { return stage_seconds(b, s); },
+                [&](const BackendResult& b) { return b.run.profile.ran(s); });
     o << "\n";
   }
   o << "| **all stages** |";
   for (const auto& b : r.backends) o << " " << time_cell(total_seconds(b)) << " | | 100% |";
-  if (ratio) o << " " << ratio_cell(paired_ratio(total_seconds(*cga), total_seconds(*trad))) << " |";
+  ratio_cells(total_seconds, [](const BackendResult&) { return true; });
   o << "\n\n";
 
   o << "## Solver and invariants\n\n| | ";
@@ -224,11 +245,12 @@ std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, in
     o << "\n## Physical sanity\n\nThe rules of `gacompare check` that hold for any correct frictionless contact "
          "response (docs/using-gacompare.md, \"Physical sanity\"); a failing one is the warning at the top of this report.\n\n"
       << check_table(sanity);
-  if (r.backends.size() > 1) {
-    o << "\nLargest distance between the traditional and cga positions over all samples: "
-      << fmt("%.3e", max_divergence(r))
-      << " m";
-    if (bodies) o << "; largest angle between their orientations: " << fmt("%.3e", max_orientation_divergence(r)) << " rad";
+  if (!pairs.empty()) o << "\n";
+  for (const BackendPair p : pairs) {
+    const StateErrors apart = pair_divergence(r, p);
+    o << "Largest distance between the " << p.denominator << " and " << p.numerator
+      << " positions over all samples: " << fmt("%.3e", apart[Measure::position]) << " m";
+    if (bodies) o << "; largest angle between their orientations: " << fmt("%.3e", apart[Measure::orientation]) << " rad";
     o << ".\n";
   }
   return o.str();
@@ -256,52 +278,60 @@ std::string interval_cell(const RatioInterval& r) {
   return fmt("%.2f", r.ratio) + " [" + fmt("%.2f", r.lo) + ", " + fmt("%.2f", r.hi) + "]";
 }
 
-// The summary's per-category table and the runs compared per unit of work
-// (compare/summary.hpp has the rules).
-void category_tables(std::ostringstream& o, const std::vector<SceneSummary>& scenes, int repeats) {
-  o << "\n## cga / traditional by category and stage\n\n"
-    << "Weighted by time: the sum over a category's scenes of the mean cga time per repeat over the sum of the mean "
-       "traditional time (each scene's ratio weighted by its traditional time, not one vote per scene). In brackets "
-       "a 95% bootstrap interval over paired repeats (repeats resampled within each scene, each cga repeat with the "
-       "traditional repeat it ran beside; "
-    << kBootstrapResamples << " resamples, seed " << kBootstrapSeed
-    << "; the expanded percentile interval, which widens the plain one for few repeats). The verdict is \"within "
-       "noise\" whenever the interval contains 1. Particle scenes run the same formulas in both backends (a Cl(3,0) "
-       "vector is a 3-vector): reported, not counted as evidence.\n\n";
-  if (repeats < static_cast<int>(kMinRepeatsForInterval))
-    o << "**Note:** with " << repeats << " repeat" << (repeats == 1 ? "" : "s")
-      << " there is no interval and so no verdict: a bootstrap interval from fewer than " << kMinRepeatsForInterval
-      << " repeats holds the true ratio well under 95% of the time. Use `--repeat " << kMinRepeatsForInterval
-      << "` or more.\n\n";
-  o << "| category | stage | scenes | traditional | cga | cga / traditional [95% CI] | verdict |\n"
+// One pair's per-category table and its runs compared per unit of work
+// (compare/summary.hpp has the rules). The first section says how the numbers
+// are made; the others, made the same way, refer to it.
+void category_tables(std::ostringstream& o, const PairSummaries& ps, int repeats, bool first) {
+  const BackendPair p = ps.pair;
+  const std::string num(p.numerator), den(p.denominator), label = p.label();
+  o << "\n## " << label << " by category and stage\n\n";
+  if (first) {
+    o << "Weighted by time: the sum over a category's scenes of the mean time per repeat of the backend named first "
+         "over the sum of the mean time of the other (each scene's ratio weighted by the second backend's time, not "
+         "one vote per scene). In brackets a 95% bootstrap interval over paired repeats (repeats resampled within "
+         "each scene, each repeat of one backend with the repeat of the other it ran beside; "
+      << kBootstrapResamples << " resamples, seed " << kBootstrapSeed
+      << "; the expanded percentile interval, which widens the plain one for few repeats). The verdict is \"within "
+         "noise\" whenever the interval contains 1. Particle scenes run the same formulas in every backend (a "
+         "vector of the algebra is a 3-vector): reported, not counted as evidence.\n\n";
+    if (repeats < static_cast<int>(kMinRepeatsForInterval))
+      o << "**Note:** with " << repeats << " repeat" << (repeats == 1 ? "" : "s")
+        << " there is no interval and so no verdict: a bootstrap interval from fewer than " << kMinRepeatsForInterval
+        << " repeats holds the true ratio well under 95% of the time. Use `--repeat " << kMinRepeatsForInterval
+        << "` or more.\n\n";
+  } else {
+    o << "Weighted, bounded and judged as above.\n\n";
+  }
+  o << "| category | stage | scenes | " << den << " | " << num << " | " << label << " [95% CI] | verdict |\n"
     << "|---|---|---:|---:|---:|---:|---|\n";
   for (const Category c : kCategories) {
-    const Aggregate overall = aggregate(scenes, c, std::nullopt);
+    const Aggregate overall = aggregate(ps.scenes, c, std::nullopt);
     if (overall.scenes == 0) continue;
     const std::string name = std::string(to_string(c)) + (is_evidence(c) ? "" : " (not evidence)");
     auto line = [&](const std::string& stage, const Aggregate& a) {
-      o << "| " << name << " | " << stage << " | " << a.scenes << " | " << format_seconds(a.traditional_seconds)
-        << " | " << format_seconds(a.cga_seconds) << " | " << interval_cell(a.ratio) << " | "
-        << to_string(a.verdict) << " |\n";
+      o << "| " << name << " | " << stage << " | " << a.scenes << " | " << format_seconds(a.denominator_seconds)
+        << " | " << format_seconds(a.numerator_seconds) << " | " << interval_cell(a.ratio) << " | "
+        << to_string(a.verdict, num) << " |\n";
     };
     for (int k = 0; k < core::kStageCount; ++k) {
       const auto st = static_cast<Stage>(k);
-      const Aggregate a = aggregate(scenes, c, st);
+      const Aggregate a = aggregate(ps.scenes, c, st);
       if (a.scenes > 0) line(std::string("`").append(core::stage_name(st)).append("`"), a);
     }
     line("**all stages**", overall);
   }
 
-  for (const auto& s : scenes) {
+  for (const auto& s : ps.scenes) {
     if (s.trajectories != Trajectories::parted) continue;
-    o << "\n## " << md_text(s.name) << ": parted, compared per unit of work\n\n"
-      << "The backends' positions moved " << fmt("%.2g", s.divergence) << " m apart, beyond the scene's "
-      << s.tolerance.source << " (" << fmt("%.2g", s.tolerance.metres)
+    o << "\n## " << md_text(s.name) << ", " << label << ": parted, compared per unit of work\n\n"
+      << "The " << den << " and " << num << " positions moved " << fmt("%.2g", s.divergence)
+      << " m apart, beyond the scene's " << s.tolerance.source << " (" << fmt("%.2g", s.tolerance.metres)
       << " m): they no longer follow one trajectory (chaos amplifies the backends' different rounding), so they "
-         "did different work. Each stage's cga time is scaled to the traditional run's work (times the traditional "
-         "units over the cga units), and the scene enters its category's ratios that way.\n\n"
-      << "| stage | unit | traditional units | cga units | traditional per unit | cga per unit | cga / traditional "
-         "[95% CI] |\n|---|---|---:|---:|---:|---:|---:|\n";
+         "did different work. Each stage's "
+      << num << " time is scaled to the " << den << " run's work (times the " << den << " units over the " << num
+      << " units), and the scene enters its category's " << label << " ratios that way.\n\n"
+      << "| stage | unit | " << den << " units | " << num << " units | " << den << " per unit | " << num
+      << " per unit | " << label << " [95% CI] |\n|---|---|---:|---:|---:|---:|---:|\n";
     // Mean seconds per repeat over the units of work.
     const auto per = [](const std::vector<double>& v, std::uint64_t n) {
       double sum = 0;
@@ -310,98 +340,141 @@ void category_tables(std::ostringstream& o, const std::vector<SceneSummary>& sce
                              : std::string("–");
     };
     for (const auto& st : s.stages) {
-      o << "| `" << core::stage_name(st.stage) << "` | " << st.unit << " | " << st.traditional_work << " | "
-        << st.cga_work << " | " << per(st.seconds.traditional, st.traditional_work) << " | "
-        << per(st.seconds.cga, st.cga_work) << " | " << interval_cell(scene_ratio(s, st.stage)) << " |\n";
+      o << "| `" << core::stage_name(st.stage) << "` | " << st.unit << " | " << st.denominator_work << " | "
+        << st.numerator_work << " | " << per(st.seconds.denominator, st.denominator_work) << " | "
+        << per(st.seconds.numerator, st.numerator_work) << " | " << interval_cell(scene_ratio(s, st.stage)) << " |\n";
     }
   }
+}
+
+// The pairs of `pairs`, in their order.
+std::vector<BackendPair> pairs_of(const std::vector<PairSummaries>& pairs) {
+  std::vector<BackendPair> out;
+  for (const auto& ps : pairs) out.push_back(ps.pair);
+  return out;
 }
 
 // The verdict §1.1 asks for (does GA help?), for speed and agreement, stated
-// from the numbers above and claiming no more than they show.
-void verdict(std::ostringstream& o, const std::vector<SceneSummary>& scenes) {
+// from the numbers above, pair by pair, and claiming no more than they show.
+void verdict(std::ostringstream& o, const std::vector<PairSummaries>& pairs) {
   o << "\n**Verdict, from these numbers:** ";
   std::vector<std::string> evidence, shared;
   for (const Category c : kCategories) {
-    const Aggregate a = aggregate(scenes, c, std::nullopt);
-    if (a.scenes == 0) continue;
-    std::string parted;
-    for (const auto& s : scenes)
-      if (s.category == c && s.trajectories == Trajectories::parted) parted += (parted.empty() ? "" : ", ") + md_text(s.name);
+    std::vector<Aggregate> per_pair;
+    int scenes = 0;  // the most any pair compared
+    for (const auto& ps : pairs) {
+      per_pair.push_back(aggregate(ps.scenes, c, std::nullopt));
+      scenes = std::max(scenes, per_pair.back().scenes);
+    }
+    if (scenes == 0) continue;
+    std::vector<std::string> parts;
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const Aggregate& a = per_pair[i];
+      if (a.scenes == 0) continue;
+      std::vector<std::string> parted;
+      for (const auto& s : pairs[i].scenes)
+        if (s.category == c && s.trajectories == Trajectories::parted) parted.push_back(md_text(s.name));
+      parts.push_back(to_string(a.verdict, pairs[i].pair.numerator) + ", " + pairs[i].pair.label() + " " +
+                      interval_cell(a.ratio) +
+                      (a.scenes < scenes ? " over " + std::to_string(a.scenes) + " scene" + (a.scenes == 1 ? "" : "s")
+                                         : "") +
+                      (parted.empty() ? "" : " (" + and_list(parted) + " per unit of work)"));
+    }
     (is_evidence(c) ? evidence : shared)
-        .push_back(std::string(to_string(c)) + " (" + std::to_string(a.scenes) + " scene" + (a.scenes == 1 ? "" : "s") +
-                   (parted.empty() ? "" : "; " + parted + " per unit of work") + "): " + to_string(a.verdict) +
-                   ", cga / traditional " + interval_cell(a.ratio));
+        .push_back(std::string(to_string(c)) + " (" + std::to_string(scenes) + " scene" + (scenes == 1 ? "" : "s") +
+                   "): " + joined(parts, "; "));
   }
   if (evidence.empty()) o << "no rigid-body or collision scene was compared, so there is no evidence either way";
-  for (std::size_t i = 0; i < evidence.size(); ++i) o << (i ? "; " : "") << evidence[i];
-  o << ". ";
+  o << joined(evidence, ". ") << ". ";
   for (const auto& text : shared)
-    o << "The " << text << ": the same code runs in both backends, so this is reported, not evidence. ";
+    o << "The " << text << ": the same code runs in every backend, so this is reported, not evidence. ";
 
-  int identical = 0, agree = 0, own = 0;
-  const SceneSummary* closest = nullptr;  // the agreeing scene nearest its tolerance
-  std::vector<std::string> parted, not_compared;
-  for (const auto& s : scenes) {
-    if (s.trajectories == Trajectories::identical) ++identical;
-    if (s.trajectories == Trajectories::agree) {
-      ++agree;
-      if (!closest || s.tolerance_used > closest->tolerance_used) closest = &s;
+  for (const auto& ps : pairs) {
+    int identical = 0, agree = 0, own = 0;
+    const SceneSummary* closest = nullptr;  // the agreeing scene nearest its tolerance
+    std::vector<std::string> parted, not_compared;
+    for (const auto& s : ps.scenes) {
+      if (s.trajectories == Trajectories::identical) ++identical;
+      if (s.trajectories == Trajectories::agree) {
+        ++agree;
+        if (!closest || s.tolerance_used > closest->tolerance_used) closest = &s;
+      }
+      if (s.trajectories == Trajectories::parted) parted.push_back(md_text(s.name));
+      if (s.trajectories == Trajectories::own_settings) ++own;
+      if (s.trajectories == Trajectories::not_compared) not_compared.push_back(md_text(s.name + " (" + s.not_compared_why + ")"));
     }
-    if (s.trajectories == Trajectories::parted) parted.push_back(md_text(s.name));
-    if (s.trajectories == Trajectories::own_settings) ++own;
-    if (s.trajectories == Trajectories::not_compared) not_compared.push_back(md_text(s.name + " (" + s.not_compared_why + ")"));
+    const std::size_t n = ps.scenes.size();
+    o << "Trajectories of " << ps.pair.numerator << " against " << ps.pair.denominator << ": ";
+    if (own)
+      o << "each ran at its own setting, the one reaching the same accuracy (`--accuracy`), on " << own << " of " << n
+        << " scenes, so they differ by design and no agreement between them is claimed"
+        << (own < static_cast<int>(n) ? "; " : ". ");
+    if (own < static_cast<int>(n)) {
+      o << "identical at every sample on " << identical << " of " << n << " scenes";
+      if (agree)
+        o << ", within the scene's own tolerance on " << agree << " (nearest it: " << md_text(closest->name) << ", "
+          << fmt("%.2g", 100 * closest->tolerance_used) << "% of " << fmt("%.0e", closest->tolerance.metres) << " m)";
+      if (!parted.empty()) o << "; parted (chaotic) on " << joined(parted, ", ") << ", where no agreement is claimed";
+      if (!not_compared.empty()) o << "; not compared on " << joined(not_compared, ", ");
+      o << ". ";
+    }
   }
-  if (own)
-    o << "Each backend ran at its own setting, the one reaching the same accuracy (`--accuracy`), on " << own << " of "
-      << scenes.size() << " scenes: their trajectories differ by design and no agreement between them is claimed. ";
-  if (own < static_cast<int>(scenes.size())) {
-    o << "Trajectories: identical at every sample on " << identical << " of " << scenes.size() << " scenes";
-    if (agree)
-      o << ", within the scene's own tolerance on " << agree << " (nearest it: " << md_text(closest->name) << ", "
-        << fmt("%.2g", 100 * closest->tolerance_used) << "% of " << fmt("%.0e", closest->tolerance.metres) << " m)";
-    const auto list = [](const std::vector<std::string>& v) {
-      std::string out;
-      for (const auto& x : v) out += (out.empty() ? "" : ", ") + x;
-      return out;
-    };
-    if (!parted.empty()) o << "; parted (chaotic) on " << list(parted) << ", where no agreement is claimed";
-    if (!not_compared.empty()) o << "; not compared on " << list(not_compared);
-    o << ". ";
-  }
-  o << "Coding simplicity is not measured here: compare `traditional/` and `cga/` side by side.\n";
+  std::vector<std::string> folders;
+  for (const std::string_view b : backends_of(pairs_of(pairs))) folders.push_back(std::string("`").append(b).append("/`"));
+  o << "Coding simplicity is not measured here: compare " << and_list(folders) << " side by side.\n";
 }
+
 }  // namespace
 
 std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
                               double equal_accuracy) {
-  std::vector<SceneSummary> scenes;
-  for (const auto& r : results) scenes.push_back(summarise_scene(r, equal_accuracy > 0));
+  const std::vector<PairSummaries> pairs = summarise(results, equal_accuracy > 0);
+  const std::vector<BackendPair> compared = pairs_of(pairs);
+  const std::vector<std::string_view> backends = backends_of(compared);
+  std::vector<std::string> backend_names;
+  for (const std::string_view b : backends) backend_names.push_back(std::string(b));
+  // Apart and trajectories hold one value per pair, in the ratio columns' order.
+  std::string per_pair;
+  if (compared.size() > 1) {
+    std::vector<std::string> labels;
+    for (const BackendPair p : compared) labels.push_back(p.label());
+    per_pair = " (" + joined(labels, "; ") + ")";
+  }
   std::ostringstream o;
-  o << "# gacompare: " << results.size() << " scenes\n\n" << header(machine, repeats) << "\n";
-  o << "| scene | category | traditional | cga | cga / traditional [95% CI] | apart (m) | apart (rad) | "
-       "tolerance d (m) | trajectories | energy change trad / cga |\n"
-    << "|---|---|---:|---:|---:|---:|---:|---:|---|---:|\n";
+  o << "# gacompare: " << results.size() << " scenes\n\n" << header(machine, repeats, compared) << "\n";
+  o << "| scene | category |";
+  for (const auto& b : backend_names) o << " " << b << " |";
+  for (const BackendPair p : compared) o << " " << p.label() << " [95% CI] |";
+  o << " apart (m)" << per_pair << " | apart (rad)" << per_pair << " | tolerance d (m) | trajectories" << per_pair
+    << " | energy change " << joined(backend_names, " / ") << " |\n|---|---|";
+  for (std::size_t i = 0; i < backends.size() + compared.size() + 3; ++i) o << "---:|";
+  o << "---|---:|\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     const SceneResult& r = results[i];
-    const SceneSummary& s = scenes[i];
-    const BackendResult* trad = find(r, "traditional");
-    const BackendResult* cga = find(r, "cga");
-    const bool compared = s.trajectories != Trajectories::not_compared;
-    o << "| [" << md_text(r.scene.name) << "](" << file_name_for(r.scene.name) << "/report.md) | " << to_string(s.category) << " | "
-      << (trad ? time_cell(total_seconds(*trad)) : "–") << " | " << (cga ? time_cell(total_seconds(*cga)) : "–")
-      << " | "
-      << (!compared ? "–"
-          : s.trajectories == Trajectories::parted
-              ? interval_cell(scene_ratio(s, std::nullopt)) + " per unit of work (whole run " +
-                    interval_cell(scene_ratio(s, std::nullopt, true)) + ")"
-              : interval_cell(scene_ratio(s, std::nullopt)))
-      << " | " << (compared ? fmt("%.2e", s.divergence) : "–") << " | "
-      << (compared && s.bodies ? fmt("%.2e", s.orientation_divergence) : "–") << " | "
-      << fmt("%.0e", s.tolerance.metres) << (s.tolerance.source == "check.max_divergence" ? "" : " (penetration)")
-      << " | " << to_string(s.trajectories) << " | "
-      << (trad ? fmt("%.2e", energy_drift(trad->run)) : "–") << " / " << (cga ? fmt("%.2e", energy_drift(cga->run)) : "–")
-      << " |\n";
+    const SceneSummary& first = pairs.front().scenes[i];
+    std::vector<std::string> times, energies, ratios, apart_m, apart_rad, trajectories;
+    for (const std::string_view name : backends) {
+      const BackendResult* b = find(r, name);
+      times.push_back(b ? time_cell(total_seconds(*b)) : "–");
+      energies.push_back(b ? fmt("%.2e", energy_drift(b->run)) : "–");
+    }
+    for (const auto& ps : pairs) {
+      const SceneSummary& s = ps.scenes[i];
+      const bool compared_here = s.trajectories != Trajectories::not_compared;
+      ratios.push_back(!compared_here ? "–"
+                       : s.trajectories == Trajectories::parted
+                           ? interval_cell(scene_ratio(s, std::nullopt)) + " per unit of work (whole run " +
+                                 interval_cell(scene_ratio(s, std::nullopt, true)) + ")"
+                           : interval_cell(scene_ratio(s, std::nullopt)));
+      apart_m.push_back(compared_here ? fmt("%.2e", s.divergence) : "–");
+      apart_rad.push_back(compared_here && s.bodies ? fmt("%.2e", s.orientation_divergence) : "–");
+      trajectories.push_back(to_string(s.trajectories));
+    }
+    o << "| [" << md_text(r.scene.name) << "](" << file_name_for(r.scene.name) << "/report.md) | "
+      << to_string(first.category) << " | " << joined(times, " | ") << " | " << joined(ratios, " | ") << " | "
+      << joined(apart_m, "; ") << " | " << joined(apart_rad, "; ") << " | " << fmt("%.0e", first.tolerance.metres)
+      << (first.tolerance.source == "check.max_divergence" ? "" : " (penetration)") << " | "
+      << joined(trajectories, "; ") << " | " << joined(energies, " / ") << " |\n";
   }
   o << "\nRatios are of the mean time per repeat, whole run; where the trajectories parted, per unit of each "
        "stage's work (below). Apart: the largest distance between the backends' particles and bodies' centres "
@@ -409,7 +482,9 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
        "`check.max_divergence`, or on a collision scene its penetration tolerance where that is smaller. Within "
        "it: every position within d and every moving body's orientation within d / r (r the body's radius: a "
        "turn by d / r moves none of its points further than d), the bounds `check` applies between backends. No "
-       "agreement is claimed beyond it.\n";
+       "agreement is claimed beyond it."
+    << (per_pair.empty() ? "" : " Apart and trajectories give one value per pair, in the order the header names.")
+    << "\n";
 
   // Physical sanity (compare/sanity.hpp), every warning of every scene, where
   // nobody reading the summary can miss it.
@@ -418,8 +493,8 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
     for (const auto& w : sanity_warnings(sanity_checks(r))) warnings.push_back(md_text(r.scene.name + ": " + w));
   for (const auto& w : warnings) o << "\n**WARNING, physical sanity:** " << w << "\n";
 
-  category_tables(o, scenes, repeats);
-  verdict(o, scenes);
+  for (std::size_t k = 0; k < pairs.size(); ++k) category_tables(o, pairs[k], repeats, k == 0);
+  verdict(o, pairs);
   return o.str();
 }
 
@@ -439,9 +514,8 @@ void write_reports(const std::filesystem::path& dir, const std::vector<SceneResu
   }
   for (const auto& r : results) write_scene(dir / file_name_for(r.scene.name), r);
   write_file_atomically(dir / "stages.csv", stage_csv(results));
-  std::vector<SceneSummary> scenes;
-  for (const auto& r : results) scenes.push_back(summarise_scene(r, equal_accuracy > 0));
-  write_file_atomically(dir / "summary.json", summary_json(scenes, machine, repeats, equal_accuracy).dump(1) + "\n");
+  write_file_atomically(dir / "summary.json",
+                        summary_json(summarise(results, equal_accuracy > 0), machine, repeats, equal_accuracy).dump(1) + "\n");
   write_file_atomically(dir / "report.md", summary_report_md(results, machine, repeats, equal_accuracy));
   write_file_atomically(dir / "report.html", summary_report_html(results, machine, repeats, equal_accuracy));
 }

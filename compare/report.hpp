@@ -10,12 +10,14 @@
 namespace gacompare::compare {
 
 // Per-stage timing (median and min–max over the repeats, calls, share of the
-// total, cga/traditional ratio over paired repeats), solver counters, invariants
-// and the divergence between backends, for one scene.
+// total, a ratio over paired repeats for each pair of summary.hpp's kPairs that
+// ran), solver counters, invariants and the divergence between backends, for
+// one scene.
 std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, int repeats);
 // The stage table as CSV: scene,backend,stage,median_s,min_s,max_s,calls.
 std::string stage_csv(const std::vector<SceneResult>& results);
-// One line per scene: total time per backend, cga/traditional ratio, divergence.
+// One line per scene: total time per backend, each pair's ratio, divergence;
+// then each pair's ratios by category and stage, and the verdict.
 // `equal_accuracy` > 0: the backends ran at their own settings reaching that
 // error (`compare --accuracy`): they differ by design and are not classified.
 std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,

@@ -1,8 +1,11 @@
 #pragma once
 // Medians with their spread: how every timing in a report is quoted. And the
-// statistics of the summary's verdict: a time-weighted cga/traditional ratio
-// over scenes with a bootstrap interval over paired repeats.
+// statistics of the summary's verdict: a time-weighted ratio of two backends'
+// times (cga/traditional, pga/traditional, pga/cga) over scenes with a
+// bootstrap interval over paired repeats.
 #include <algorithm>
+#include <string>
+#include <string_view>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -34,26 +37,27 @@ inline double median_in_place(std::vector<double>& v) {
   return 0.5 * (below + v[n / 2]);
 }
 
-// One scene's (or one stage's) times, seconds per repeat: repeat i of cga and
-// repeat i of traditional ran back to back, so they form a pair. Only the first
-// min(cga.size(), traditional.size()) repeats count.
+// One scene's (or one stage's) times of two backends, seconds per repeat: the
+// numerator's (cga in cga/traditional) and the denominator's; repeat i of each
+// ran back to back, so they form a pair. Only the first
+// min(numerator.size(), denominator.size()) repeats count.
 struct PairedRepeats {
-  std::vector<double> cga, traditional;
-  std::size_t pairs() const { return std::min(cga.size(), traditional.size()); }
+  std::vector<double> numerator, denominator;
+  std::size_t pairs() const { return std::min(numerator.size(), denominator.size()); }
 };
 
-// Σ over scenes of the mean cga time / Σ of the mean traditional time: the
-// ratio of the total time, i.e. each scene's ratio weighted by its traditional
-// time (Σ w_s r_s with w_s = t_s / Σ t). A 33 µs scene weighs as little as it
-// costs next to a 15 s one; a median over scenes would weigh them alike.
-// NaN when there is no traditional time.
+// Σ over scenes of the mean numerator time / Σ of the mean denominator time:
+// the ratio of the total time, i.e. each scene's ratio weighted by its
+// denominator time (Σ w_s r_s with w_s = t_s / Σ t). A 33 µs scene weighs as
+// little as it costs next to a 15 s one; a median over scenes would weigh them
+// alike. NaN when there is no denominator time.
 inline double time_weighted_ratio(std::span<const PairedRepeats> scenes) {
   double num = 0, den = 0;
   for (const auto& s : scenes) {
     const std::size_t n = s.pairs();
     if (n == 0) continue;
     double c = 0, t = 0;
-    for (std::size_t i = 0; i < n; ++i) c += s.cga[i], t += s.traditional[i];
+    for (std::size_t i = 0; i < n; ++i) c += s.numerator[i], t += s.denominator[i];
     num += c / static_cast<double>(n);
     den += t / static_cast<double>(n);
   }
@@ -120,7 +124,7 @@ inline void percentile_ends(std::vector<double>& resampled, double tail, RatioIn
 
 // The 95% bootstrap interval of time_weighted_ratio: each resample draws,
 // within every scene independently, as many repeats as it has, with
-// replacement, keeping each cga repeat with its traditional partner (so the
+// replacement, keeping each numerator repeat with its denominator partner (so the
 // drift both shared cancels), and recomputes the ratio; the interval's ends are
 // the k-th smallest and largest resample, k = ⌊α' B⌋ with α' =
 // expanded_tail(n), n the fewest repeats of any scene. Indices are mt19937_64
@@ -149,7 +153,7 @@ inline RatioInterval bootstrap_ratio(std::span<const PairedRepeats> scenes, int 
       double c = 0, t = 0;
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t i = static_cast<std::size_t>(rng() % n);
-        c += s.cga[i], t += s.traditional[i];
+        c += s.numerator[i], t += s.denominator[i];
       }
       num += c / static_cast<double>(n);
       den += t / static_cast<double>(n);
@@ -213,18 +217,20 @@ inline RatioInterval bootstrap_unpaired_ratio(std::span<const double> before, st
 
 // The word for an interval: it must not flip with noise, so a ratio is "within
 // noise" whenever its interval contains 1 (ends included), whatever the ratio.
-enum class Speed { within_noise, cga_faster, cga_slower, unknown };
+// faster and slower are the numerator's.
+enum class Speed { within_noise, faster, slower, unknown };
 inline Speed speed_verdict(const RatioInterval& r) {
   if (std::isnan(r.lo) || std::isnan(r.hi)) return Speed::unknown;
-  if (r.hi < 1) return Speed::cga_faster;
-  if (r.lo > 1) return Speed::cga_slower;
+  if (r.hi < 1) return Speed::faster;
+  if (r.lo > 1) return Speed::slower;
   return Speed::within_noise;
 }
-inline const char* to_string(Speed s) {
+// "within noise", "cga faster" (numerator "cga"), "cga slower" or "no verdict".
+inline std::string to_string(Speed s, std::string_view numerator) {
   switch (s) {
     case Speed::within_noise: return "within noise";
-    case Speed::cga_faster: return "cga faster";
-    case Speed::cga_slower: return "cga slower";
+    case Speed::faster: return std::string(numerator) + " faster";
+    case Speed::slower: return std::string(numerator) + " slower";
     case Speed::unknown: break;
   }
   return "no verdict";

@@ -31,11 +31,11 @@ std::uint64_t counter(const core::Run& run, const char* name) {
 }
 
 // What one unit of a stage's work is, and how many each run did (summary.hpp).
-void set_work(StageTimes& st, const core::Run& trad, const core::Run& cga) {
+void set_work(StageTimes& st, const core::Run& num, const core::Run& den) {
   const auto from_counter = [&](const char* unit, const char* name) {
     st.unit = unit;
-    st.traditional_work = counter(trad, name);
-    st.cga_work = counter(cga, name);
+    st.numerator_work = counter(num, name);
+    st.denominator_work = counter(den, name);
   };
   switch (st.stage) {
     case Stage::narrowphase: from_counter("narrowphase pair", "narrowphase_pairs"); break;
@@ -43,29 +43,62 @@ void set_work(StageTimes& st, const core::Run& trad, const core::Run& cga) {
     case Stage::time_of_impact: from_counter("time-of-impact state", "impact_state_evaluations"); break;
     case Stage::integrate:
       st.unit = "solver step";
-      st.traditional_work = trad.solver.steps_accepted + trad.solver.steps_rejected;
-      st.cga_work = cga.solver.steps_accepted + cga.solver.steps_rejected;
+      st.numerator_work = num.solver.steps_accepted + num.solver.steps_rejected;
+      st.denominator_work = den.solver.steps_accepted + den.solver.steps_rejected;
       break;
     default: break;
   }
-  if (st.traditional_work == 0 || st.cga_work == 0) {  // no such counter: the stage's own calls
+  if (st.numerator_work == 0 || st.denominator_work == 0) {  // no such counter: the stage's own calls
     st.unit = st.stage == Stage::forces ? "derivative evaluation"
               : st.stage == Stage::broadphase ? "detection"
                                               : "call";
-    st.traditional_work = trad.profile[st.stage].calls;
-    st.cga_work = cga.profile[st.stage].calls;
+    st.numerator_work = num.profile[st.stage].calls;
+    st.denominator_work = den.profile[st.stage].calls;
   }
 }
 
-json interval_json(const Aggregate& a) {
+// Keys named by the backends, so cga/traditional reads "traditional_seconds"
+// and "cga_seconds" as it always has.
+json interval_json(const Aggregate& a, BackendPair p) {
   return {{"ratio", a.ratio.ratio},
           {"ci95", json::array({a.ratio.lo, a.ratio.hi})},
-          {"verdict", to_string(a.verdict)},
+          {"verdict", to_string(a.verdict, p.numerator)},
           {"scenes", a.scenes},
-          {"traditional_seconds", a.traditional_seconds},
-          {"cga_seconds", a.cga_seconds}};
+          {std::string(p.denominator) + "_seconds", a.denominator_seconds},
+          {std::string(p.numerator) + "_seconds", a.numerator_seconds}};
 }
 }  // namespace
+
+bool ran_both(const SceneResult& r, BackendPair p) {
+  return find_backend(r, p.numerator) && find_backend(r, p.denominator);
+}
+
+std::vector<BackendPair> pairs_present(std::span<const SceneResult> results) {
+  std::vector<BackendPair> out;
+  for (const BackendPair p : kPairs)
+    if (std::any_of(results.begin(), results.end(), [&](const SceneResult& r) { return ran_both(r, p); }))
+      out.push_back(p);
+  return out;
+}
+
+std::vector<std::string_view> backends_of(std::span<const BackendPair> pairs) {
+  std::vector<std::string_view> out;
+  for (const BackendPair p : pairs)
+    for (const std::string_view b : {p.denominator, p.numerator})
+      if (std::find(out.begin(), out.end(), b) == out.end()) out.push_back(b);
+  return out;
+}
+
+StateErrors pair_divergence(const SceneResult& r, BackendPair p) {
+  StateErrors worst;
+  const BackendResult* num = find_backend(r, p.numerator);
+  const BackendResult* den = find_backend(r, p.denominator);
+  if (!num || !den) return worst;
+  const auto& a = den->run.samples;
+  const auto& b = num->run.samples;
+  for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) worst.take(state_difference(a[k], b[k]));
+  return worst;
+}
 
 const char* to_string(Category c) {
   switch (c) {
@@ -104,13 +137,13 @@ Trajectories classify(double position_divergence, double orientation_divergence,
   return tolerance_used <= 1 ? Trajectories::agree : Trajectories::parted;  // a NaN is not agreement
 }
 
-double tolerance_used(const SceneResult& r, double d) {
-  const BackendResult* trad = find_backend(r, "traditional");
-  const BackendResult* cga = find_backend(r, "cga");
-  if (!trad || !cga) return 0;
+double tolerance_used(const SceneResult& r, BackendPair p, double d) {
+  const BackendResult* num = find_backend(r, p.numerator);
+  const BackendResult* den = find_backend(r, p.denominator);
+  if (!num || !den) return 0;
   const std::vector<double> radii = body_radii(*r.model);
-  const auto& a = trad->run.samples;
-  const auto& b = cga->run.samples;
+  const auto& a = den->run.samples;
+  const auto& b = num->run.samples;
   double used = 0;
   for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
     for (std::size_t i = 0; i < std::min(a[k].particles.size(), b[k].particles.size()); ++i)
@@ -125,43 +158,57 @@ double tolerance_used(const SceneResult& r, double d) {
   return used;
 }
 
-SceneSummary summarise_scene(const SceneResult& r, bool own_settings) {
+SceneSummary summarise_scene(const SceneResult& r, BackendPair pair, bool own_settings) {
   SceneSummary s;
+  s.pair = pair;
   s.name = r.scene.name;
   s.category = category_of(r.scene);
   s.tolerance = agreement_tolerance(r.scene);
   s.bodies = !r.scene.bodies.empty();
-  const BackendResult* trad = find_backend(r, "traditional");
-  const BackendResult* cga = find_backend(r, "cga");
-  if (!trad || !cga) {
-    s.not_compared_why = "needs both traditional and cga";
+  const BackendResult* num = find_backend(r, pair.numerator);
+  const BackendResult* den = find_backend(r, pair.denominator);
+  if (!num || !den) {
+    s.not_compared_why = "needs both " + std::string(pair.denominator) + " and " + std::string(pair.numerator);
     return s;
   }
-  s.divergence = max_divergence(r);
-  s.orientation_divergence = max_orientation_divergence(r);
-  for (const auto* b : {trad, cga})
+  const StateErrors apart = pair_divergence(r, pair);
+  s.divergence = apart[Measure::position];
+  s.orientation_divergence = apart[Measure::orientation];
+  for (const auto* b : {den, num})
     if (b->run.error) s.not_compared_why = b->run.backend + " stopped early";
-  s.tolerance_used = tolerance_used(r, s.tolerance.metres);
+  s.tolerance_used = tolerance_used(r, pair, s.tolerance.metres);
   s.trajectories = !s.not_compared_why.empty() ? Trajectories::not_compared
                    : own_settings                ? Trajectories::own_settings
                                                  : classify(s.divergence, s.orientation_divergence, s.tolerance_used);
   for (int k = 0; k < core::kStageCount; ++k) {
     const auto stage = static_cast<Stage>(k);
-    if (!trad->run.profile.ran(stage) && !cga->run.profile.ran(stage)) continue;
+    if (!den->run.profile.ran(stage) && !num->run.profile.ran(stage)) continue;
     StageTimes st;
     st.stage = stage;
-    st.seconds = {seconds_each_repeat(*cga, stage), seconds_each_repeat(*trad, stage)};
-    set_work(st, trad->run, cga->run);
+    st.seconds = {seconds_each_repeat(*num, stage), seconds_each_repeat(*den, stage)};
+    set_work(st, num->run, den->run);
     s.stages.push_back(std::move(st));
   }
   return s;
 }
 
+std::vector<PairSummaries> summarise(std::span<const SceneResult> results, bool own_settings) {
+  std::vector<BackendPair> pairs = pairs_present(results);
+  if (pairs.empty() || pairs.front() != kPairs[0]) pairs.insert(pairs.begin(), kPairs[0]);
+  std::vector<PairSummaries> out;
+  for (const BackendPair p : pairs) {
+    PairSummaries ps{p, {}};
+    for (const auto& r : results) ps.scenes.push_back(summarise_scene(r, p, own_settings));
+    out.push_back(std::move(ps));
+  }
+  return out;
+}
+
 PairedRepeats per_unit_of_work(const StageTimes& s) {
   PairedRepeats out = s.seconds;
-  if (s.traditional_work == 0 || s.cga_work == 0) return out;
-  const double scale = static_cast<double>(s.traditional_work) / static_cast<double>(s.cga_work);
-  for (auto& x : out.cga) x *= scale;
+  if (s.numerator_work == 0 || s.denominator_work == 0) return out;
+  const double scale = static_cast<double>(s.denominator_work) / static_cast<double>(s.numerator_work);
+  for (auto& x : out.numerator) x *= scale;
   return out;
 }
 
@@ -172,9 +219,9 @@ PairedRepeats compared_seconds(const SceneSummary& s, std::optional<core::Stage>
     if (stage && st.stage != *stage) continue;
     const PairedRepeats p = s.trajectories == Trajectories::parted && !as_measured ? per_unit_of_work(st) : st.seconds;
     const std::size_t n = p.pairs();
-    out.cga.resize(std::max(out.cga.size(), n));
-    out.traditional.resize(std::max(out.traditional.size(), n));
-    for (std::size_t i = 0; i < n; ++i) out.cga[i] += p.cga[i], out.traditional[i] += p.traditional[i];
+    out.numerator.resize(std::max(out.numerator.size(), n));
+    out.denominator.resize(std::max(out.denominator.size(), n));
+    for (std::size_t i = 0; i < n; ++i) out.numerator[i] += p.numerator[i], out.denominator[i] += p.denominator[i];
   }
   return out;
 }
@@ -201,10 +248,10 @@ Aggregate aggregate(const std::vector<SceneSummary>& scenes, Category c, std::op
     PairedRepeats p = compared_seconds(s, stage);
     const std::size_t n = p.pairs();
     double sc = 0, st = 0;
-    for (std::size_t i = 0; i < n; ++i) sc += p.cga[i], st += p.traditional[i];
+    for (std::size_t i = 0; i < n; ++i) sc += p.numerator[i], st += p.denominator[i];
     if (n == 0 || st <= 0) continue;
-    a.cga_seconds += sc / static_cast<double>(n);
-    a.traditional_seconds += st / static_cast<double>(n);
+    a.numerator_seconds += sc / static_cast<double>(n);
+    a.denominator_seconds += st / static_cast<double>(n);
     ++a.scenes;
     data.push_back(std::move(p));
   }
@@ -213,10 +260,12 @@ Aggregate aggregate(const std::vector<SceneSummary>& scenes, Category c, std::op
   return a;
 }
 
-nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, const MachineInfo& machine,
-                                    int repeats, double equal_accuracy) {
+namespace {
+// One pair's "scenes" and "categories" (summary.hpp).
+json pair_json(const PairSummaries& ps) {
+  const BackendPair p = ps.pair;
   json scene_list = json::array();
-  for (const auto& s : scenes) {
+  for (const auto& s : ps.scenes) {
     json j = {{"name", s.name},
               {"category", to_string(s.category)},
               {"evidence", is_evidence(s.category)},
@@ -234,15 +283,16 @@ nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, con
       const RatioInterval r = scene_ratio(s, std::nullopt);
       j["ratio"] = r.ratio;
       j["ci95"] = json::array({r.lo, r.hi});
-      j["verdict"] = to_string(speed_verdict(r));
+      j["verdict"] = to_string(speed_verdict(r), p.numerator);
       if (parted) {
         const RatioInterval whole = scene_ratio(s, std::nullopt, true);
         j["whole_run_ratio"] = whole.ratio;
         j["whole_run_ci95"] = json::array({whole.lo, whole.hi});
         json work = json::object();
         for (const auto& st : s.stages)
-          work[std::string(core::stage_name(st.stage))] = {
-              {"unit", st.unit}, {"traditional", st.traditional_work}, {"cga", st.cga_work}};
+          work[std::string(core::stage_name(st.stage))] = {{"unit", st.unit},
+                                                           {std::string(p.denominator), st.denominator_work},
+                                                           {std::string(p.numerator), st.numerator_work}};
         j["work"] = work;
       }
     }
@@ -250,46 +300,71 @@ nlohmann::ordered_json summary_json(const std::vector<SceneSummary>& scenes, con
   }
   json categories = json::object();
   for (const Category c : kCategories) {
-    const Aggregate overall = aggregate(scenes, c, std::nullopt);
+    const Aggregate overall = aggregate(ps.scenes, c, std::nullopt);
     if (overall.scenes == 0) continue;
     json names = json::array();
-    for (const auto& s : scenes)
+    for (const auto& s : ps.scenes)
       if (s.category == c) names.push_back(s.name);
     json stages = json::object();
     for (int k = 0; k < core::kStageCount; ++k) {
       const auto stage = static_cast<Stage>(k);
-      const Aggregate a = aggregate(scenes, c, stage);
-      if (a.scenes > 0) stages[std::string(core::stage_name(stage))] = interval_json(a);
+      const Aggregate a = aggregate(ps.scenes, c, stage);
+      if (a.scenes > 0) stages[std::string(core::stage_name(stage))] = interval_json(a, p);
     }
     categories[to_string(c)] = {{"evidence", is_evidence(c)},
                                 {"scenes", names},
-                                {"overall", interval_json(overall)},
+                                {"overall", interval_json(overall, p)},
                                 {"stages", stages}};
+  }
+  return {{"scenes", scene_list}, {"categories", categories}};
+}
+}  // namespace
+
+nlohmann::ordered_json summary_json(const std::vector<PairSummaries>& pairs, const MachineInfo& machine,
+                                    int repeats, double equal_accuracy) {
+  // cga/traditional at the top level, where its readers have always found it.
+  json first = pair_json(PairSummaries{kPairs[0], {}});
+  json others = json::array();
+  for (const auto& ps : pairs) {
+    if (ps.pair == kPairs[0]) {
+      first = pair_json(ps);
+      continue;
+    }
+    json j = {{"numerator", std::string(ps.pair.numerator)}, {"denominator", std::string(ps.pair.denominator)}};
+    j.update(pair_json(ps));
+    others.push_back(std::move(j));
   }
   return {{"tool", {{"name", "gacompare"}, {"version", tool_version()}}},
           {"machine", machine_json(machine)},
           {"repeats", repeats},
           {"equal_accuracy", equal_accuracy > 0 ? json(equal_accuracy) : json(nullptr)},
           {"method",
-           {{"ratio",
-             "time-weighted cga/traditional: the sum over a category's scenes of the mean cga seconds per repeat "
-             "over the sum of the mean traditional seconds; where trajectories parted, each stage's cga time is "
-             "scaled to the traditional run's work (seconds x traditional units / cga units)"},
+           {{"pairs",
+             "\"scenes\" and \"categories\" compare cga with traditional; each entry of \"pairs\" another pair "
+             "that ran (pga/traditional, pga/cga), the same way"},
+            {"ratio",
+             "time-weighted numerator/denominator (cga/traditional): the sum over a category's scenes of the mean "
+             "numerator seconds per repeat over the sum of the mean denominator seconds; where trajectories parted, "
+             "each stage's numerator time is scaled to the denominator run's work (seconds x denominator units / "
+             "numerator units)"},
             {"ci95",
-             "95% bootstrap interval over paired repeats, resampled within each scene, cga repeat i kept with "
-             "traditional repeat i; expanded percentile interval (Hesterberg 2015): the k-th smallest and largest "
+             "95% bootstrap interval over paired repeats, resampled within each scene, numerator repeat i kept with "
+             "denominator repeat i; expanded percentile interval (Hesterberg 2015): the k-th smallest and largest "
              "resampled ratio, k = floor(tail x resamples), tail = Phi(-sqrt(n/(n-1)) t(0.975, n-1)) for n repeats"},
             {"resamples", kBootstrapResamples},
             {"seed", kBootstrapSeed},
             {"tail", repeats >= static_cast<int>(kMinRepeatsForInterval) ? json(expanded_tail(repeats)) : json(nullptr)},
             {"min_repeats", kMinRepeatsForInterval},
-            {"verdict", "\"within noise\" when ci95 contains 1, else \"cga faster\" or \"cga slower\""},
+            {"verdict",
+             "\"within noise\" when ci95 contains 1, else the numerator's \"faster\" or \"slower\" (\"cga "
+             "faster\")"},
             {"agreement",
              "every position within d and every moving body's orientation within d / r (r the body's radius), as "
              "check bounds them between backends; d the scene's check.max_divergence, and on a collision scene at "
              "most its penetration tolerance; parted otherwise"}}},
-          {"scenes", scene_list},
-          {"categories", categories}};
+          {"scenes", first["scenes"]},
+          {"categories", first["categories"]},
+          {"pairs", others}};
 }
 
 }  // namespace gacompare::compare

@@ -62,6 +62,7 @@ TEST(ReportRender, ChromiumShowsTablesAndFigures) {
   EXPECT_GE(count(dom, "<table"), 2u);             // stage times, solver and invariants
   EXPECT_GE(count(dom, "<svg"), 3u);               // energy, constraint violation, divergence
   EXPECT_NE(dom.find("integrate"), std::string::npos);
+  EXPECT_NE(dom.find("<th>pga / cga</th>"), std::string::npos);  // every pair that ran has its ratio column
   ASSERT_EQ(std::system((browser + " --window-size=1100,2400 --screenshot=" + (dir / "shot.png").string() + " " + url +
                          " > /dev/null 2>&1")
                             .c_str()),

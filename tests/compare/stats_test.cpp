@@ -63,15 +63,15 @@ TEST(BootstrapRatio, ManyRepeatsMatchTheNormalInterval) {
   // 2.5% quantile to ±0.0001 (1σ).
   PairedRepeats s;
   for (int i = 0; i < 400; ++i) {
-    s.cga.push_back(i % 2 ? 2.1 : 1.9);
-    s.traditional.push_back(1.0);
+    s.numerator.push_back(i % 2 ? 2.1 : 1.9);
+    s.denominator.push_back(1.0);
   }
   const std::vector<PairedRepeats> scenes = {s};
   const RatioInterval r = bootstrap_ratio(scenes);
   EXPECT_NEAR(r.ratio, 2.0, kRounding);
   EXPECT_NEAR(r.lo, 2 - 1.96 * 0.005, 1e-3);
   EXPECT_NEAR(r.hi, 2 + 1.96 * 0.005, 1e-3);
-  EXPECT_EQ(speed_verdict(r), Speed::cga_slower);
+  EXPECT_EQ(speed_verdict(r), Speed::slower);
 }
 
 TEST(BootstrapRatio, ResamplesWithinEachSceneAndKeepsPairs) {
@@ -120,8 +120,8 @@ TEST(BootstrapRatio, CoverageWithFiveRepeats) {
     PairedRepeats p;
     for (int i = 0; i < 5; ++i) {
       const double d = noise(g);
-      p.cga.push_back(std::exp(d + noise(g)));
-      p.traditional.push_back(std::exp(d + noise(g)));
+      p.numerator.push_back(std::exp(d + noise(g)));
+      p.denominator.push_back(std::exp(d + noise(g)));
     }
     const std::vector<PairedRepeats> s = {p};
     const RatioInterval a = bootstrap_ratio(s, 4000, k + 1), b = bootstrap_ratio(s, 4000, k + 1, 0.025);
@@ -150,10 +150,11 @@ TEST(BootstrapRatio, FixedSeedIsReproducibleAndTheSeedIsAParameter) {
 TEST(SpeedVerdict, WithinNoiseWheneverTheIntervalContainsOne) {
   EXPECT_EQ(speed_verdict({1.4, 0.98, 1.9}), Speed::within_noise);  // a large ratio that spans 1 is still noise
   EXPECT_EQ(speed_verdict({1.0, 1.0, 1.2}), Speed::within_noise);
-  EXPECT_EQ(speed_verdict({1.02, 1.001, 1.05}), Speed::cga_slower);
-  EXPECT_EQ(speed_verdict({0.9, 0.85, 0.999}), Speed::cga_faster);
+  EXPECT_EQ(speed_verdict({1.02, 1.001, 1.05}), Speed::slower);
+  EXPECT_EQ(speed_verdict({0.9, 0.85, 0.999}), Speed::faster);
   EXPECT_EQ(speed_verdict({}), Speed::unknown);
-  EXPECT_STREQ(to_string(Speed::within_noise), "within noise");
+  EXPECT_EQ(to_string(Speed::within_noise, "cga"), "within noise");
+  EXPECT_EQ(to_string(Speed::faster, "pga"), "pga faster");  // the numerator's word
 }
 
 TEST(BootstrapUnpairedRatio, TwoRepeatsEachEnumerated) {
@@ -202,7 +203,7 @@ TEST(BootstrapUnpairedRatio, OneSlowRepeatDoesNotHideASlowdown) {
   EXPECT_GE(r.lo, 1.3 * 0.96 / 1.04 - kRounding) << r.lo;
   EXPECT_LE(r.hi, 1.3 * 1.04 / 0.96 + kRounding) << r.hi;
   EXPECT_NEAR(r.ratio, 1.3 / 1.01, kRounding);  // medians: B's 1.3 · 1.00, A's 1.01 (its 1.00 is the slow one)
-  EXPECT_EQ(speed_verdict(r), Speed::cga_slower);  // "slower": B over A, whole interval above 1
+  EXPECT_EQ(speed_verdict(r), Speed::slower);  // "slower": B over A, whole interval above 1
 }
 
 TEST(BootstrapUnpairedRatio, CoverageWithFiveRepeatsEach) {

@@ -1,6 +1,7 @@
 // The summary's rules (compare/summary.hpp) against answers computed by hand:
 // categories, agreement tolerances, runs compared per unit of work, the
-// time-weighted aggregate per category and summary.json.
+// time-weighted aggregate per category, the pairs of backends compared and
+// summary.json.
 #include "compare/summary.hpp"
 
 #include <gtest/gtest.h>
@@ -85,9 +86,10 @@ TEST(Summary, ToleranceUsedBoundsPositionsAndOrientationsAsCheckDoes) {
     r.backends.push_back(br);
   }
   // Tolerance: the rotation angle is exact to ~1e-16 rad (compare/metrics.hpp).
-  EXPECT_NEAR(tolerance_used(r, 1e-6), std::sqrt(3.0) * 4e-7 / 1e-6, 1e-9);
+  EXPECT_NEAR(tolerance_used(r, kPairs[0], 1e-6), std::sqrt(3.0) * 4e-7 / 1e-6, 1e-9);
   r.backends[1].run.samples[0].bodies[0].orientation = {1, 0, 0, 0};
-  EXPECT_NEAR(tolerance_used(r, 1e-6), 0.3, 1e-9);  // the particle's 3e-7 m
+  EXPECT_NEAR(tolerance_used(r, kPairs[0], 1e-6), 0.3, 1e-9);  // the particle's 3e-7 m
+  EXPECT_EQ(tolerance_used(r, {"pga", "traditional"}, 1e-6), 0);  // no pga run
 }
 
 namespace {
@@ -99,8 +101,8 @@ SceneSummary two_stage_scene(Trajectories t) {
   s.name = "box";
   s.category = Category::collisions;
   s.trajectories = t;
-  s.stages.push_back({core::Stage::narrowphase, {{4, 4}, {1, 1}}, "narrowphase pair", 100, 200});
-  s.stages.push_back({core::Stage::response, {{1, 5}, {2, 2}}, "impulse", 10, 5});
+  s.stages.push_back({core::Stage::narrowphase, {{4, 4}, {1, 1}}, "narrowphase pair", 200, 100});
+  s.stages.push_back({core::Stage::response, {{1, 5}, {2, 2}}, "impulse", 5, 10});
   return s;
 }
 }  // namespace
@@ -111,17 +113,17 @@ TEST(Summary, PartedRunsAreComparedPerUnitOfWork) {
   // stages: cga (4, 12) against (3, 3): 8/3. As measured: narrowphase 4,
   // response 3/2, all stages (5, 9) against (3, 3): 7/3.
   const SceneSummary parted = two_stage_scene(Trajectories::parted);
-  EXPECT_EQ(per_unit_of_work(parted.stages[0]).cga, (std::vector<double>{2, 2}));
+  EXPECT_EQ(per_unit_of_work(parted.stages[0]).numerator, (std::vector<double>{2, 2}));
   EXPECT_NEAR(scene_ratio(parted, core::Stage::narrowphase).ratio, 2.0, kRounding);
   EXPECT_NEAR(scene_ratio(parted, core::Stage::response).ratio, 3.0, kRounding);
-  EXPECT_EQ(compared_seconds(parted, std::nullopt).cga, (std::vector<double>{4, 12}));
+  EXPECT_EQ(compared_seconds(parted, std::nullopt).numerator, (std::vector<double>{4, 12}));
   EXPECT_NEAR(scene_ratio(parted, std::nullopt).ratio, 8.0 / 3.0, kRounding);
   EXPECT_NEAR(scene_ratio(parted, std::nullopt, true).ratio, 7.0 / 3.0, kRounding);  // as measured
 
   const SceneSummary agreed = two_stage_scene(Trajectories::agree);
   EXPECT_NEAR(scene_ratio(agreed, core::Stage::narrowphase).ratio, 4.0, kRounding);
   EXPECT_NEAR(scene_ratio(agreed, core::Stage::response).ratio, 1.5, kRounding);
-  EXPECT_EQ(compared_seconds(agreed, std::nullopt).cga, (std::vector<double>{5, 9}));
+  EXPECT_EQ(compared_seconds(agreed, std::nullopt).numerator, (std::vector<double>{5, 9}));
   EXPECT_NEAR(scene_ratio(agreed, std::nullopt).ratio, 7.0 / 3.0, kRounding);
 
   EXPECT_TRUE(std::isnan(scene_ratio(parted, std::nullopt).lo));  // 2 repeats: no interval
@@ -148,15 +150,15 @@ TEST(Summary, AggregateIsPerCategoryAndTimeWeighted) {
   scenes.push_back(particles);
   const Aggregate a = aggregate(scenes, Category::collisions, std::nullopt);
   EXPECT_EQ(a.scenes, 2);
-  EXPECT_NEAR(a.cga_seconds, 8.0, kRounding);
-  EXPECT_NEAR(a.traditional_seconds, 4.0, kRounding);
+  EXPECT_NEAR(a.numerator_seconds, 8.0, kRounding);
+  EXPECT_NEAR(a.denominator_seconds, 4.0, kRounding);
   EXPECT_NEAR(a.ratio.ratio, 2.0, kRounding);
   const Aggregate n = aggregate(scenes, Category::collisions, core::Stage::narrowphase);
   EXPECT_NEAR(n.ratio.ratio, 5.0 / 2.0, kRounding);  // (4 + 1) over (1 + 1)
   EXPECT_EQ(aggregate(scenes, Category::rigid_bodies, std::nullopt).scenes, 0);
   EXPECT_EQ(aggregate(scenes, Category::particles, std::nullopt).verdict, Speed::unknown);  // 2 repeats
 
-  const nlohmann::ordered_json j = summary_json(scenes, MachineInfo{}, 2);
+  const nlohmann::ordered_json j = summary_json({{kPairs[0], scenes}}, MachineInfo{}, 2);
   EXPECT_EQ(j["method"]["resamples"], kBootstrapResamples);
   EXPECT_NEAR(j["categories"]["collisions"]["overall"]["ratio"].get<double>(), 2.0, kRounding);
   EXPECT_EQ(j["categories"]["collisions"]["overall"]["ci95"].size(), 2u);  // [null, null]: 2 repeats
@@ -164,6 +166,9 @@ TEST(Summary, AggregateIsPerCategoryAndTimeWeighted) {
   EXPECT_TRUE(j["categories"]["collisions"]["evidence"].get<bool>());
   EXPECT_FALSE(j["categories"]["particles"]["evidence"].get<bool>());
   EXPECT_FALSE(j["categories"].contains("rigid bodies"));
+  EXPECT_NEAR(j["categories"]["collisions"]["overall"]["cga_seconds"].get<double>(), 8.0, kRounding);
+  EXPECT_NEAR(j["categories"]["collisions"]["overall"]["traditional_seconds"].get<double>(), 4.0, kRounding);
+  EXPECT_TRUE(j["pairs"].empty());  // cga / traditional alone
 }
 
 TEST(Summary, AnIntervalFromFiveRepeats) {
@@ -173,8 +178,63 @@ TEST(Summary, AnIntervalFromFiveRepeats) {
   s.trajectories = Trajectories::agree;
   s.stages = {{core::Stage::forces, {{2, 4, 6, 8, 10}, {1, 2, 3, 4, 5}}, "derivative evaluation", 1, 1}};
   EXPECT_EQ(scene_ratio(s, std::nullopt).lo, 2.0);
-  EXPECT_EQ(aggregate({s}, Category::rigid_bodies, std::nullopt).verdict, Speed::cga_slower);
-  s.stages[0].seconds.cga.pop_back();
+  EXPECT_EQ(aggregate({s}, Category::rigid_bodies, std::nullopt).verdict, Speed::slower);
+  s.stages[0].seconds.numerator.pop_back();
   EXPECT_TRUE(std::isnan(scene_ratio(s, std::nullopt).hi));
   EXPECT_EQ(aggregate({s}, Category::rigid_bodies, std::nullopt).verdict, Speed::unknown);
+}
+
+TEST(Summary, EveryPairHasTheShapeOfCgaOverTraditional) {
+  // pga / traditional over the five repeats above at ratio 3, and the box
+  // parted: its work keys and seconds keys name pga and traditional, its
+  // verdict pga's. cga / traditional stays at the top level, its keys as ever.
+  SceneSummary fast;
+  fast.category = Category::rigid_bodies;
+  fast.trajectories = Trajectories::agree;
+  fast.stages = {{core::Stage::forces, {{2, 4, 6, 8, 10}, {1, 2, 3, 4, 5}}, "derivative evaluation", 1, 1}};
+  const BackendPair pga{"pga", "traditional"};
+  SceneSummary slow = fast;
+  slow.pair = pga;
+  for (double& x : slow.stages[0].seconds.numerator) x *= 1.5;
+  SceneSummary parted = two_stage_scene(Trajectories::parted);
+  parted.pair = pga;
+  const nlohmann::ordered_json j =
+      summary_json({{pga, {slow, parted}}, {kPairs[0], {fast, two_stage_scene(Trajectories::agree)}}}, MachineInfo{}, 5);
+  EXPECT_EQ(j["categories"]["rigid bodies"]["overall"]["verdict"], "cga slower");  // the top level: cga, wherever given
+  EXPECT_TRUE(j["categories"]["rigid bodies"]["overall"].contains("cga_seconds"));
+  ASSERT_EQ(j["pairs"].size(), 1u);
+  const auto& p = j["pairs"][0];
+  EXPECT_EQ(p["numerator"], "pga");
+  EXPECT_EQ(p["denominator"], "traditional");
+  const auto& overall = p["categories"]["rigid bodies"]["overall"];
+  EXPECT_NEAR(overall["ratio"].get<double>(), 3.0, kRounding);
+  EXPECT_EQ(overall["verdict"], "pga slower");
+  EXPECT_NEAR(overall["pga_seconds"].get<double>(), 9.0, kRounding);  // mean of 3, 6, 9, 12, 15
+  EXPECT_NEAR(overall["traditional_seconds"].get<double>(), 3.0, kRounding);
+  EXPECT_FALSE(overall.contains("cga_seconds"));
+  ASSERT_EQ(p["scenes"].size(), 2u);
+  EXPECT_EQ(p["scenes"][1]["compared"], "per unit of work");
+  EXPECT_EQ(p["scenes"][1]["work"]["narrowphase"]["pga"], 200);
+  EXPECT_EQ(p["scenes"][1]["work"]["narrowphase"]["traditional"], 100);
+  EXPECT_NEAR(p["scenes"][1]["ratio"].get<double>(), 8.0 / 3.0, kRounding);  // as for cga above
+}
+
+TEST(Summary, PairsThatRan) {
+  // Which pairs a set of results holds, and their backends in order.
+  const auto ran = [](std::initializer_list<const char*> names) {
+    SceneResult r;
+    for (const char* name : names) {
+      r.backends.emplace_back();
+      r.backends.back().run.backend = name;
+    }
+    return r;
+  };
+  const SceneResult two = ran({"traditional", "cga"}), three = ran({"traditional", "pga", "bullet"});
+  const BackendPair pga_trad{"pga", "traditional"}, pga_cga{"pga", "cga"};
+  EXPECT_EQ(pairs_present(std::span(&two, 1)), (std::vector<BackendPair>{kPairs[0]}));
+  EXPECT_EQ(pairs_present(std::span(&three, 1)), (std::vector<BackendPair>{pga_trad}));
+  const std::vector<SceneResult> both = {two, three};
+  EXPECT_EQ(pairs_present(both), (std::vector<BackendPair>{kPairs[0], pga_trad}));  // pga and cga never met
+  EXPECT_EQ(backends_of(kPairs), (std::vector<std::string_view>{"traditional", "cga", "pga"}));
+  EXPECT_EQ(pga_cga.label(), "pga / cga");
 }
