@@ -28,7 +28,7 @@ from resultgen.common import RESULTS, ROOT, Context, Provenance, fill, write_pag
 
 # name: (what it measures, generator). The order is the README table's.
 PAGES = {
-    "summary": ("every bundled scene through both backends: the verdict per category", summary.generate),
+    "summary": ("every bundled scene through every backend: the verdict per category and pair", summary.generate),
     "rigid-bodies": ("stability, steps and time at equal accuracy, what each rotation costs", dynamics.rigid_bodies),
     "particles": ("work-precision sweeps of the particle scenes", dynamics.particles),
     "collisions": ("detection per stage and per pair, the referees' agreement", collisions.generate),

@@ -1,5 +1,6 @@
-"""docs/results/summary.md: every bundled scene through both backends, what
-`bash scripts/run-all.sh` runs, and the verdict per category."""
+"""docs/results/summary.md: every bundled scene through every backend, what
+`bash scripts/run-all.sh` runs, and the verdict per category and pair of
+backends (cga / traditional, pga / traditional, pga / cga)."""
 import glob
 import json
 import os
@@ -13,8 +14,16 @@ def _demote(markdown):
     return re.sub(r"^(#+) ", lambda m: "#" + m.group(1) + " ", markdown, flags=re.M)
 
 
-def overall(summary, category):
-    c = summary["categories"].get(category)
+def pairs(summary):
+    """Each pair summary.json compares, as (label, block with "scenes" and
+    "categories"): cga / traditional at its top level, then each of "pairs"."""
+    yield "cga / traditional", summary
+    for p in summary.get("pairs", []):
+        yield f"{p['numerator']} / {p['denominator']}", p
+
+
+def overall(block, category):
+    c = block["categories"].get(category)
     if not c:
         return None
     o = c["overall"]
@@ -39,17 +48,24 @@ def generate(ctx):
     # commit is in the page's provenance.
     report = re.sub(r"\[([^\]]+)\]\([^)]*report\.md\)", r"\1", report)
     report = re.sub(r",? commit [0-9a-f]+(?: with uncommitted changes)?", "", report)
-    headline = []
-    for category, label in (("rigid bodies", "Rigid bodies without contact: whole run, cga / traditional at equal tolerance"),
-                            ("collisions", "Scenes with collisions: whole run, cga / traditional")):
-        value = overall(summary, category)
-        if value:
-            headline.append({"finding": label, "value": value, "anchor": ""})
+    return {"blocks": {"report": _demote(report)}, "headline": headline(summary)}
+
+
+def headline(summary):
+    """The README rows: each category's whole-run ratio for every pair that
+    ran, then the particle scenes (cga / traditional: the same formulas)."""
+    rows = []
+    for category, finding in (("rigid bodies", "Rigid bodies without contact: whole run, {} at equal tolerance"),
+                              ("collisions", "Scenes with collisions: whole run, {}")):
+        for label, block in pairs(summary):
+            value = overall(block, category)
+            if value:
+                rows.append({"finding": finding.format(label), "value": value, "anchor": ""})
     same = [s["name"] for s in summary["scenes"] if s["trajectories"] == "identical"]
     parts = [s for s in summary["scenes"] if s["category"] == "particles"]
     if parts:
-        headline.append({"finding": "Particle scenes (the same formulas in both backends)",
-                         "value": f"identical trajectories on {sum(s['name'] in same for s in parts)} of {len(parts)}; "
-                                  + (overall(summary, "particles") or ""),
-                         "anchor": ""})
-    return {"blocks": {"report": _demote(report)}, "headline": headline}
+        rows.append({"finding": "Particle scenes (the same formulas in every backend)",
+                     "value": f"identical trajectories on {sum(s['name'] in same for s in parts)} of {len(parts)}; "
+                              + (overall(summary, "particles") or ""),
+                     "anchor": ""})
+    return rows

@@ -8,7 +8,7 @@ import unittest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from resultgen import common, contacts, dynamics  # noqa: E402
+from resultgen import common, contacts, dynamics, summary  # noqa: E402
 
 spec = importlib.util.spec_from_file_location("check_docs", os.path.join(ROOT, "scripts", "check-docs.py"))
 check_docs = importlib.util.module_from_spec(spec)
@@ -83,6 +83,47 @@ class EqualAccuracy(unittest.TestCase):
         self.assertEqual(dynamics._accuracy_ratio(self.MD, "spinning_top"), "0.46 (0.40–0.50)")
         self.assertEqual(dynamics._accuracy_ratio(self.MD, "dzhanibekov"), "0.68 (0.65–0.75)")
         self.assertIsNone(dynamics._accuracy_ratio(self.MD, "kepler"))
+
+
+def _category(ratio, lo, hi, verdict, scenes):
+    """One category of summary.json, its overall numbers only."""
+    return {"evidence": True, "scenes": scenes,
+            "overall": {"ratio": ratio, "ci95": [lo, hi], "verdict": verdict, "scenes": len(scenes)}}
+
+
+class SummaryPairs(unittest.TestCase):
+    """summary.json as gacompare writes it: cga / traditional at the top level,
+    the other pairs that ran under "pairs", each of the same shape."""
+    SUMMARY = {
+        "scenes": [{"name": "drag", "category": "particles", "trajectories": "identical"},
+                   {"name": "box", "category": "rigid bodies", "trajectories": "within tolerance"}],
+        "categories": {"rigid bodies": _category(0.77, 0.76, 0.78, "cga faster", ["box"]),
+                       "particles": _category(1.0, 0.99, 1.01, "within noise", ["drag"])},
+        "pairs": [{"numerator": "pga", "denominator": "traditional", "scenes": [],
+                   "categories": {"rigid bodies": _category(1.2, 1.1, 1.3, "pga slower", ["box"])}},
+                  {"numerator": "pga", "denominator": "cga", "scenes": [],
+                   "categories": {"rigid bodies": _category(1.5, None, None, "no verdict", ["box"])}}],
+    }
+
+    def test_every_pair_in_order(self):
+        self.assertEqual([label for label, _ in summary.pairs(self.SUMMARY)],
+                         ["cga / traditional", "pga / traditional", "pga / cga"])
+
+    def test_a_headline_row_per_pair_and_category(self):
+        rows = summary.headline(self.SUMMARY)
+        self.assertEqual([(r["finding"], r["value"]) for r in rows], [
+            ("Rigid bodies without contact: whole run, cga / traditional at equal tolerance",
+             "0.77 [0.76, 0.78], cga faster (1 scenes)"),
+            ("Rigid bodies without contact: whole run, pga / traditional at equal tolerance",
+             "1.20 [1.10, 1.30], pga slower (1 scenes)"),
+            ("Rigid bodies without contact: whole run, pga / cga at equal tolerance", "1.50, no verdict (1 scenes)"),
+            ("Particle scenes (the same formulas in every backend)",
+             "identical trajectories on 1 of 1; 1.00 [0.99, 1.01], within noise (1 scenes)"),
+        ])
+
+    def test_a_summary_without_pairs_reads_as_before(self):
+        old = {k: v for k, v in self.SUMMARY.items() if k != "pairs"}
+        self.assertEqual(len(summary.headline(old)), 2)
 
 
 class Anchors(unittest.TestCase):
