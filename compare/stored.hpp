@@ -29,12 +29,12 @@ namespace gacompare::compare {
 // The most repeats a run may ask for (--repeat) and a file may hold: diff's
 // bootstrap recomputes the medians 20,000 times per line, in time linear in the
 // repeats (measured on this 2-core machine under load: 0.9 s a line at 1,000),
-// and a diff has up to 30 lines (3 backends × 9 stages and all together), so
+// and a diff has up to 40 lines (4 backends × 9 stages and all together), so
 // 200 keeps the slowest diff a file can ask for to seconds.
 inline constexpr int kMaxRepeats = 200;
 // The most runs a results.json or a baseline holds: one per backend
-// (traditional, cga, bullet); a cell's variants of one setting are as many.
-inline constexpr std::size_t kMaxRuns = 3;
+// (traditional, cga, pga, bullet); a cell's variants of one setting are as many.
+inline constexpr std::size_t kMaxRuns = 4;
 // The longest time a file may store, s (31 years): anything above is not a measurement.
 inline constexpr double kMaxSeconds = 1e9;
 

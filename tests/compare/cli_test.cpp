@@ -34,7 +34,7 @@ void write_text(const fs::path& p, const std::string& text) {
 
 const std::string kScene = std::string(GACOMPARE_DATA_DIR) + "/scenes/projectile_linear_drag.json";
 
-TEST(Cli, CompareWritesResultsAndReportForBothBackends) {
+TEST(Cli, CompareWritesResultsAndReportForEveryBackend) {
   const fs::path out = fresh_dir("compare");
   const Result r = gacompare("compare " + kScene + " --repeat 3 --quiet --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
@@ -67,9 +67,10 @@ TEST(Cli, CompareWritesResultsAndReportForBothBackends) {
   } else {
     EXPECT_EQ(j["machine"]["git"]["commit"], "unknown");
   }
-  ASSERT_EQ(j["runs"].size(), 2u);
+  ASSERT_EQ(j["runs"].size(), 3u);  // no Bullet: a particle scene
   EXPECT_EQ(j["runs"][0]["backend"], "traditional");
   EXPECT_EQ(j["runs"][1]["backend"], "cga");
+  EXPECT_EQ(j["runs"][2]["backend"], "pga");
   for (const auto& run : j["runs"]) {
     const auto& s0 = run["samples"][0];
     EXPECT_EQ(s0["t"], 0.0);
@@ -183,8 +184,8 @@ TEST(Cli, MistakesGetOneLineSayingWhatWasMeant) {
   one_line(gacompare("comapre " + kScene), "'comapre' is not a command (run, compare, check, sweep, merge, diff, list, "
                                            "collide or corpus); did you mean 'compare'?");
   one_line(gacompare("--quiet frobnicate"), "'frobnicate' is not a command");
-  one_line(gacompare("run " + kScene + " --backend cgaa"), "--backend: 'cgaa' is not a backend (traditional, cga or "
-                                                           "bullet); did you mean 'cga'?");
+  one_line(gacompare("run " + kScene + " --backend cgaa"), "--backend: 'cgaa' is not a backend (traditional, cga, pga "
+                                                           "or bullet); did you mean 'cga'?");
   one_line(gacompare("run " + kScene), "--backend is required");
   one_line(gacompare("compare " + kScene + " --repeat 0"), "--repeat: expected a whole number from 1 to 200, got 0");
   one_line(gacompare("compare " + kScene + " --repeat 99999999999999"), "got 99999999999999, above 200");

@@ -191,7 +191,7 @@ TEST(ReliabilityInputs, DiffFailsOnTruncatedEmptiedOrUnrelatedResults) {
   d.failed(b, "in A only: B has no run of this backend");
   b = d.a;
   b["runs"] = json::array();
-  d.refused(b, {"/runs: expected an array of 1 to 3 elements"});
+  d.refused(b, {"/runs: expected an array of 1 to 4 elements"});
   expect_clean(d.w);
 }
 
@@ -220,7 +220,7 @@ TEST(ReliabilityInputs, TamperedResultsAreInputErrorsWithTheirPath) {
   const Diffed d("types");
   json b = d.a;
   b["runs"] = "runs";
-  d.refused(b, {"/runs: expected an array of 1 to 3 elements, got \"runs\""});
+  d.refused(b, {"/runs: expected an array of 1 to 4 elements, got \"runs\""});
   b = d.a;
   b["runs"][0]["samples"] = 3;
   d.refused(b, {"/runs/0/samples: expected an array of 1 to", "got 3"});
@@ -249,7 +249,7 @@ TEST(ReliabilityInputs, CheckFailsOnEmptiedOrShortBaselines) {
   json b = stored;
   b["runs"] = json::array();  // was "6 passed", exit 0
   write(file, b);
-  expect_prompt_refusal(w, check, {named + ": /runs: expected an array of 1 to 3 elements, got an array of 0"});
+  expect_prompt_refusal(w, check, {named + ": /runs: expected an array of 1 to 4 elements, got an array of 0"});
   b = stored;
   b["runs"].erase(1);
   write(file, b);
