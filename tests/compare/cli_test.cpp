@@ -449,7 +449,7 @@ TEST(Cli, SweepOfABodyMeasuresEveryErrorAndDrawsOrientation) {
     EXPECT_GT(at("angular_velocity_error"), 0.0) << row;
     ++rows;
   }
-  EXPECT_EQ(rows, 6);  // rk4 at two steps; matrix, quaternion (traditional) and rotor (cga)
+  EXPECT_EQ(rows, 8);  // rk4 at two steps; matrix, quaternion (traditional), rotor (cga) and motor (pga)
   const std::string md = read_text(dir / "sweep.md");
   EXPECT_NE(md.find("| rk4 | traditional-quaternion | dt 0.01 |"), std::string::npos) << md;
   EXPECT_NE(md.find("## Time at equal accuracy"), std::string::npos) << md;

@@ -109,7 +109,7 @@ TEST(Stored, SweepCellsReadBackAsWritten) {
   const std::string text = run_unit(units[0], swept, sweep_reference(swept), spec).dump(1);
   const SweepCell cell = parse_cell(text, "c.json", units[0].id);
   EXPECT_TRUE(cell_is_current(cell, cell_key(swept, spec)));
-  ASSERT_EQ(cell.cells.size(), 2u);
+  ASSERT_EQ(cell.cells.size(), 3u);  // traditional, cga, pga (a particle scene: no second rotation)
   EXPECT_EQ(cell.cells[0].seconds.size(), 2u);
   EXPECT_GT(cell.cells[1].steps, 0u);
   EXPECT_TRUE(cell.cells[0].errors.count("position"));
