@@ -1,23 +1,20 @@
 // The degenerate-case table (docs/results/contacts.md): every case of the
-// contact family (answers/contact_family.hpp) through traditional, cga and Bullet,
+// contact family (answers/contact_family.hpp) through traditional, cga, pga and Bullet,
 // each judged against its analytic outcome. A cell is "pass" or "FAIL" with the
 // worst error (the check that came closest to, or went furthest past, its
 // tolerance); the reasons for the failures follow the table. Markdown on stdout,
 // progress on stderr.
 //
-//   build/release/bench/contact_table [--filter TEXT] [--backends traditional,cga,bullet]
+//   build/release/bench/contact_table [--filter TEXT] [--backends traditional,cga,pga,bullet]
 //                                     [--max-duration S] [--method manifold|report]
 //
 // --filter keeps the cases whose name contains TEXT; --max-duration shortens
 // every case to at most S simulated seconds (the table says so: a shortened
 // stack is judged on its shorter run); --method sets how our backends find
 // contacts (the collisions effect's "method"; Bullet has its own).
-#include "cga/backend.hpp"
-#include "compare/bullet_world.hpp"
+#include "compare/runner.hpp"
 #include "answers/contact_family.hpp"
 #include "core/error.hpp"
-#include "core/dynamics/simulator.hpp"
-#include "traditional/backend.hpp"
 #include "family_table.hpp"
 
 #include <cstdio>
@@ -30,11 +27,7 @@ using namespace gacompare;
 
 namespace {
 
-core::Run run(const std::string& backend, const core::Scene& scene) {
-  if (backend == "traditional") return core::simulate<traditional::Backend>(scene);
-  if (backend == "cga") return core::simulate<cga::Backend>(scene);
-  return compare::simulate_bullet(scene);
-}
+core::Run run(const std::string& backend, const core::Scene& scene) { return compare::run_backend(scene, backend); }
 
 std::string cell(const core::ContactVerdict& v) {
   char buf[64];
@@ -44,7 +37,7 @@ std::string cell(const core::ContactVerdict& v) {
 }
 
 int usage() {
-  std::fprintf(stderr, "usage: contact_table [--filter TEXT] [--backends traditional,cga,bullet] [--max-duration S] "
+  std::fprintf(stderr, "usage: contact_table [--filter TEXT] [--backends traditional,cga,pga,bullet] [--max-duration S] "
                        "[--method manifold|report]\n");
   return 2;
 }
@@ -53,7 +46,7 @@ int usage() {
 
 int main(int argc, char** argv) {
   std::string filter, command = "contact_table";
-  std::vector<std::string> backends{"traditional", "cga", "bullet"};
+  std::vector<std::string> backends{"traditional", "cga", "pga", "bullet"};
   double max_duration = 0;
   core::ContactMethod method = core::ContactMethod::manifold;
   for (int i = 1; i < argc; ++i) {
@@ -69,7 +62,7 @@ int main(int argc, char** argv) {
       if (value != "manifold" && value != "report") return usage();
       method = value == "report" ? core::ContactMethod::report : core::ContactMethod::manifold;
     } else if (arg == "--backends") {
-      const auto list = bench::column_list(value, {"traditional", "cga", "bullet"});
+      const auto list = bench::column_list(value, {"traditional", "cga", "pga", "bullet"});
       if (!list) return usage();
       backends = *list;
     } else {

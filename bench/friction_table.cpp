@@ -1,5 +1,5 @@
 // The friction table (docs/results/contacts.md): each friction scene
-// (data/scenes/friction_*.json) through traditional, cga and Bullet, each
+// (data/scenes/friction_*.json) through traditional, cga, pga and Bullet, each
 // figure against its analytic answer (answers/friction_answers.hpp). A cell is the
 // measured value and its error (relative, or absolute in the unit where the
 // answer is 0). Markdown on stdout.
@@ -8,12 +8,9 @@
 //
 // Without arguments: the three bundled friction scenes, the rolling spheres,
 // the top on the floor and the mixed pile (answers/friction_answers.hpp).
-#include "cga/backend.hpp"
-#include "compare/bullet_world.hpp"
+#include "compare/runner.hpp"
 #include "core/error.hpp"
 #include "answers/friction_answers.hpp"
-#include "core/dynamics/simulator.hpp"
-#include "traditional/backend.hpp"
 
 #include <cstdio>
 #include <exception>
@@ -31,11 +28,11 @@ int main(int argc, char** argv) {
                              "sphere_slide_to_roll", "top_on_floor", "mixed_pile"})
       files.push_back(std::filesystem::path(GACOMPARE_DATA_DIR) / "scenes" / (std::string(name) + ".json"));
   try {
-    std::printf("| scene | figure | analytic | traditional | cga | Bullet |\n|---|---|---|---|---|---|\n");
+    std::printf("| scene | figure | analytic | traditional | cga | pga | Bullet |\n|---|---|---|---|---|---|---|\n");
     for (const auto& file : files) {
       const core::Scene scene = core::load_scene(file);
-      const std::vector<core::Run> runs = {core::simulate<traditional::Backend>(scene), core::simulate<cga::Backend>(scene),
-                                           compare::simulate_bullet(scene)};
+      std::vector<core::Run> runs;
+      for (const char* backend : {"traditional", "cga", "pga", "bullet"}) runs.push_back(compare::run_backend(scene, backend));
       std::vector<std::vector<core::FrictionFigure>> figures;
       for (const auto& run : runs) {
         if (run.error) throw std::runtime_error(scene.name + " (" + run.backend + "): " + *run.error);

@@ -7,19 +7,16 @@
 // tests know to be open (StackCase::open) saying why. Markdown on stdout,
 // progress on stderr.
 //
-//   build/ci/bench/stacking_table [--filter TEXT] [--columns traditional,cga,bullet,traditional-pgs,cga-pgs]
+//   build/ci/bench/stacking_table [--filter TEXT] [--columns traditional,cga,pga,bullet,traditional-pgs,cga-pgs,pga-pgs]
 //
-// Default columns: traditional, cga, bullet. A column is a backend with the
+// Default columns: traditional, cga, pga, bullet. A column is a backend with the
 // family's default contact solver (direct),
 // a backend with projected Gauss–Seidel (NAME-pgs), or Bullet (its own
 // sequential impulses, 10 iterations, split impulse).
 #include "answers/stacking_family.hpp"
-#include "cga/backend.hpp"
-#include "compare/bullet_world.hpp"
+#include "compare/runner.hpp"
 #include "family_table.hpp"
-#include "core/dynamics/simulator.hpp"
 #include "core/error.hpp"
-#include "traditional/backend.hpp"
 
 #include <cstdio>
 #include <map>
@@ -30,10 +27,9 @@ using namespace gacompare;
 
 namespace {
 
+// A column is a backend, with "-pgs" for the Gauss–Seidel solver.
 core::Run run(const std::string& column, const core::Scene& scene) {
-  if (column.starts_with("traditional")) return core::simulate<traditional::Backend>(scene);
-  if (column.starts_with("cga")) return core::simulate<cga::Backend>(scene);
-  return compare::simulate_bullet(scene);
+  return compare::run_backend(scene, column.substr(0, column.find('-')));
 }
 
 core::ContactSolverMethod method_of(const std::string& column) {
@@ -41,7 +37,7 @@ core::ContactSolverMethod method_of(const std::string& column) {
 }
 
 int usage() {
-  std::fprintf(stderr, "usage: stacking_table [--filter TEXT] [--columns traditional,cga,bullet,traditional-pgs,cga-pgs]\n");
+  std::fprintf(stderr, "usage: stacking_table [--filter TEXT] [--columns traditional,cga,pga,bullet,traditional-pgs,cga-pgs,pga-pgs]\n");
   return 2;
 }
 
@@ -49,7 +45,7 @@ int usage() {
 
 int main(int argc, char** argv) {
   std::string filter, command = "stacking_table";
-  std::vector<std::string> columns{"traditional", "cga", "bullet"};
+  std::vector<std::string> columns{"traditional", "cga", "pga", "bullet"};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (i + 1 >= argc) return usage();
@@ -58,7 +54,7 @@ int main(int argc, char** argv) {
     if (arg == "--filter") {
       filter = value;
     } else if (arg == "--columns") {
-      const auto list = bench::column_list(value, {"traditional", "cga", "bullet", "traditional-pgs", "cga-pgs"});
+      const auto list = bench::column_list(value, {"traditional", "cga", "pga", "bullet", "traditional-pgs", "cga-pgs", "pga-pgs"});
       if (!list) return usage();
       columns = *list;
     } else {

@@ -1,6 +1,7 @@
 #include "compare/collide.hpp"
 
 #include "cga/narrowphase.hpp"
+#include "pga/narrowphase.hpp"
 #include "compare/machine.hpp"
 #include "compare/referee.hpp"
 #include "compare/stats.hpp"
@@ -25,7 +26,7 @@ namespace {
 
 using collision::PairContact;
 using Clock = std::chrono::steady_clock;
-const std::size_t kReference = 4;  // "sat" in collide_methods()
+const std::size_t kReference = 6;  // "sat" in collide_methods()
 
 nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
@@ -77,9 +78,11 @@ nlohmann::json collide(const std::vector<collision::CollisionCase>& cases, const
     const auto& c = cases[index];
     const FclShape fa(*c.mesh_a), fb(*c.mesh_b);
     const BulletShape ba(*c.mesh_a), bb(*c.mesh_b);
-    std::vector<collision::FeatureContact> trad_contacts, cga_contacts, trad_manifold, cga_manifold;
+    std::vector<collision::FeatureContact> trad_contacts, cga_contacts, pga_contacts, trad_manifold, cga_manifold,
+        pga_manifold;
     traditional::Shape trad_a, trad_b;
     cga::Shape cga_a, cga_b;
+    pga::Shape pga_a, pga_b;
     // Each method as a query; the referees' shapes are built once above, like
     // our meshes, so only the query is timed.
     const std::vector<std::function<PairContact()>> query{
@@ -91,8 +94,13 @@ nlohmann::json collide(const std::vector<collision::CollisionCase>& cases, const
           cga_contacts.clear();
           return cga::narrowphase(c.a(), c.b(), collision::Method::report, &cga_contacts);
         },
+        [&] {
+          pga_contacts.clear();
+          return pga::narrowphase(c.a(), c.b(), collision::Method::report, &pga_contacts);
+        },
         [&] { return first_meeting<traditional::Body>(trad_a, trad_b, c, trad_manifold); },
         [&] { return first_meeting<cga::Body>(cga_a, cga_b, c, cga_manifold); },
+        [&] { return first_meeting<pga::Body>(pga_a, pga_b, c, pga_manifold); },
         [&] { return collision::sat_reference(c.a(), c.b()); },
         [&] { return fcl_collide(fa, c.pose_a, fb, c.pose_b); },
         [&] { return bullet_collide(ba, c.pose_a, bb, c.pose_b); },
@@ -133,8 +141,10 @@ nlohmann::json collide(const std::vector<collision::CollisionCase>& cases, const
     }
     entry["traditional"]["contacts"] = trad_contacts.size();
     entry["cga"]["contacts"] = cga_contacts.size();
+    entry["pga"]["contacts"] = pga_contacts.size();
     entry["traditional_manifold"]["contacts"] = trad_manifold.size();
     entry["cga_manifold"]["contacts"] = cga_manifold.size();
+    entry["pga_manifold"]["contacts"] = pga_manifold.size();
     entry["disagree"] = disagree;
     if (!disagree.empty() && !options.disagreements.empty()) {
       std::filesystem::create_directories(options.disagreements);
@@ -192,13 +202,13 @@ std::string collide_table(const nlohmann::json& entries) {
   for (const auto& m : collide_methods()) {
     const Acc& a = acc[m];
     const Spread d = spread(a.depth_err), g = spread(a.angle), t = spread(a.time);
-    const double t_trad = m == "traditional" || m == "cga" ? t_report : t_simulated;
+    const double t_trad = m == "traditional" || m == "cga" || m == "pga" ? t_report : t_simulated;
     s << "| " << m << " | " << a.compared << " | " << a.errors << " | " << a.agree << " (" << (a.compared ? 100.0 * a.agree / a.compared : 0)
       << "%) | " << d.median << " (" << d.max << ") | " << g.median << " (" << g.max << ") | " << t.median * 1e6
       << " | " << (t_trad > 0 ? t.median / t_trad : 0) << " | " << spread(a.time_apart).median * 1e6 << " | "
       << spread(a.time_overlapping).median * 1e6 << " |\n";
   }
-  s << "\n* traditional and cga: × traditional (the report's detector, fig. 7, with the separating-axis depth); the "
+  s << "\n* traditional, cga and pga: × traditional (the report's detector, fig. 7, with the separating-axis depth); the "
        "rest: × traditional_manifold (what the simulation runs: the separating-axis test stopping at a separating "
        "axis, then the contact manifold).\n";
   s << "\n" << touching << " pair(s) inside the touching band (|reference depth| ≤ 1e-9 × scale) are not counted.\n";

@@ -14,17 +14,19 @@
 
 namespace gacompare::compare {
 
-// The methods, in the table's order: our two backends with the report's
+// The methods, in the table's order: our three backends with the report's
 // detector (fig. 7) and with what the simulation runs (the separating-axis
 // test stopping at a separating axis, then the contact manifold:
 // sat_then_manifold), the exact reference, the referees.
 inline const std::vector<std::string>& collide_methods() {
-  static const std::vector<std::string> m{"traditional", "cga", "traditional_manifold", "cga_manifold", "sat", "fcl",
-                                          "bullet"};
+  static const std::vector<std::string> m{"traditional", "cga", "pga", "traditional_manifold", "cga_manifold",
+                                          "pga_manifold", "sat", "fcl", "bullet"};
   return m;
 }
 // Ours (a disagreement with the reference fails `gacompare collide`).
-inline bool our_method(const std::string& m) { return m.rfind("traditional", 0) == 0 || m.rfind("cga", 0) == 0; }
+inline bool our_method(const std::string& m) {
+  return m.rfind("traditional", 0) == 0 || m.rfind("cga", 0) == 0 || m.rfind("pga", 0) == 0;
+}
 
 struct CollideOptions {
   int repeat = 5;                     // timed queries per method and pair (interleaved); the median is reported

@@ -75,4 +75,17 @@ struct LineResult {  // point: the line's point nearest the origin; direction un
   Eigen::Vector3d point = Eigen::Vector3d::Zero(), direction = Eigen::Vector3d::Zero();
 };
 
+// The rotation of the quaternion (w, x, y, z) of any non-zero norm: the
+// homogeneous form (every entry quadratic) over w² + x² + y² + z², an exact
+// rotation for a drifted quaternion, rotor or motor alike, with one division
+// and no square root (cga's rotor and pga's motor read their rotation here).
+inline Eigen::Matrix3d rotation_of(double w, double x, double y, double z) {
+  const double s = 1 / (w * w + x * x + y * y + z * z);
+  Eigen::Matrix3d m;
+  m << w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y),
+       2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x),
+       2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z;
+  return s * m;
+}
+
 }  // namespace gacompare::geometry

@@ -34,8 +34,8 @@ struct NarrowAlgebra {
   static double offset(const Plane& f) { return pga::offset(f); }
   // The plane with π's normal at offset d: only its e0 coefficient changes.
   static Plane parallel(const Plane& f, double offset) { return {{-offset, f.c[1], f.c[2], f.c[3]}}; }
-  // π ∧ X = n·x − d, > 0 outside.
-  static double distance(const Plane& f, const Point& p) { return pga::distance(f, p); }
+  // π ∧ X = n·x − d, > 0 outside (written out for weight 1: cl301.hpp).
+  static double distance(const Plane& f, const Point& p) { return distance_of_unit_point(f, p); }
   // Two faces' normals as planes through the origin meet in a line whose
   // direction is the edge pair's axis: the Euclidean part of a ∧ b.
   static Vec3 edge_axis(const Vec3& da, const Vec3& db) {
@@ -56,16 +56,14 @@ struct NarrowAlgebra {
   // Round shapes (core/collision/round.hpp): PGA has no round primitive (the
   // conformal model adds one dimension for them), so a ball is its centre point
   // and radius. Two points' squared distance is the squared length of the
-  // direction of their join, P ∨ Q = (q − p) + (p × q) e0 for weight 1.
+  // direction of their join, P ∨ Q = (q − p) + (p × q) e0 for weight 1
+  // (written out: cl301.hpp distance2_of_unit_points).
   struct Sphere {
     Point centre;
     double radius;
   };
   static Sphere sphere(const Vec3& centre, double radius) { return {point(centre), radius}; }
-  static double distance2(const Point& x, const Point& y) {
-    const auto d = join<kEuclideanLine>(x, y);
-    return cga::norm2(d);
-  }
+  static double distance2(const Point& x, const Point& y) { return distance2_of_unit_points(x, y); }
   static double centre_distance2(const Sphere& a, const Sphere& b) { return distance2(a.centre, b.centre); }
 };
 

@@ -220,7 +220,11 @@ RigidBodies::Motion RigidBodies::motion(const Model& m, std::span<const double> 
 }
 
 RigidBodies::Arm RigidBodies::arm(const Motion& b, const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
-  const Line row = join(point(p - b.x), direction(n));  // J: direction n, moment r × n
+  // J = r ∨ n, the join of the point and the direction written out (cl301.hpp's
+  // table: direction n, moment r × n): the generic join would multiply by the
+  // direction's weight 0 and the point's 1.
+  const Vec3 r = p - b.x;
+  const Line row = line(n, r.cross(n));
   return {row, line(b.inv_inertia * line_moment(row), b.inv_mass * line_direction(row))};
 }
 

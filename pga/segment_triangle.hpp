@@ -48,7 +48,7 @@ struct PreparedTriangle {
   // The segment's ends as points of weight 1 (a narrowphase Body stores its
   // vertices so).
   std::optional<collision::SegmentHit> through(const Point& L0, const Point& L1) const {
-    const double alpha = distance(pi, L0), beta = distance(pi, L1);
+    const double alpha = distance_of_unit_point(pi, L0), beta = distance_of_unit_point(pi, L1);
     const double length = (coordinates(L1) - coordinates(L0)).norm();
     if (!(std::abs(alpha - beta) > geometry::kSinTol * pi_norm * length)) return std::nullopt;  // parallel
     if ((alpha > 0 && beta > 0) || (alpha < 0 && beta < 0)) return std::nullopt;               // one side

@@ -299,6 +299,16 @@ TYPED_TEST_P(RigidCases, PhysicalErrorNormReadsTheRotationAngle) {
   check(y_faster, theta);
 }
 
+// One 0.1 × 0.4 × 0.9 box of 2 kg at x turned by q, for the interpolation tests.
+inline core::Scene posed_box_scene(const Eigen::Quaterniond& q, const Eigen::Vector3d& x, const char* options) {
+  char body[512];
+  std::snprintf(body, sizeof body,
+                R"({"name": "b", "shape": {"box": [0.1, 0.4, 0.9]}, "mass": 2.0, "position": [%.17g, %.17g, %.17g],)"
+                R"( "orientation": [%.17g, %.17g, %.17g, %.17g]})",
+                x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z());
+  return rigid_scene(body, "", options, 1.0, 0.5, R"({"method": "rk4", "dt": 1e-3})");
+}
+
 // The time of impact's interpolated motion (§4.3.2): the pose s of
 // the way between two states moves the centre along the line and turns about
 // the one fixed axis at a constant rate, by the shorter way round (a turn by
@@ -314,12 +324,7 @@ TYPED_TEST_P(RigidCases, InterpolatedPoseTurnsAtAConstantRateTheShorterWay) {
   const Eigen::Vector3d axis = Eigen::Vector3d(1, -2, 0.5).normalized();
   const Eigen::Quaterniond q0(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
   const auto state = [](const Eigen::Quaterniond& q, const Eigen::Vector3d& x) {
-    char body[512];
-    std::snprintf(body, sizeof body,
-                  R"({"name": "b", "shape": {"box": [0.1, 0.4, 0.9]}, "mass": 2.0, "position": [%.17g, %.17g, %.17g],)"
-                  R"( "orientation": [%.17g, %.17g, %.17g, %.17g]})",
-                  x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z());
-    const core::Scene scene = rigid_scene(body, "", TypeParam::options, 1.0, 0.5, R"({"method": "rk4", "dt": 1e-3})");
+    const core::Scene scene = posed_box_scene(q, x, TypeParam::options);
     auto model = B::build(scene);
     std::vector<double> y(B::state_size(model));
     B::initial_state(model, y);

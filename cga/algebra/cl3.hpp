@@ -9,6 +9,7 @@
 // about e3, B = e12, and R = cos(θ/2) − e12 sin(θ/2) takes e1 to cosθ e1 + sinθ e2.
 // The unit quaternion (w, x, y, z) of the same rotation is R = w − x e23 + y e13 − z e12.
 #include "cga/algebra/multivector.hpp"
+#include "core/geometry.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -83,13 +84,7 @@ inline Eigen::Quaterniond quaternion_from_rotor(const Rotor3& r) {
 // the same policy as the quaternion's (traditional/rigid_body.cpp rotation_of).
 // With R = w + a e12 + b e13 + c e23, the equivalent quaternion is (w, −c, b, −a).
 inline Eigen::Matrix3d rotation_matrix(const Rotor3& r) {
-  const double w = r.c[0], x = -r.c[3], y = r.c[2], z = -r.c[1];
-  const double s = 1 / (w * w + x * x + y * y + z * z);
-  Eigen::Matrix3d m;
-  m << w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y),
-       2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x),
-       2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z;
-  return s * m;
+  return geometry::rotation_of(r.c[0], -r.c[3], r.c[2], -r.c[1]);
 }
 
 // The same rotation acting on bivector coordinates (e12, e13, e23): B ↦ R B R̃

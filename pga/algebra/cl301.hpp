@@ -17,6 +17,7 @@
 // one 4-term outer product. Lines are joins (regressive products ∨, through the
 // Poincaré complement: the algebra has no inverse pseudoscalar, I² = 0).
 #include "cga/algebra/multivector.hpp"
+#include "core/geometry.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -133,6 +134,20 @@ constexpr auto join(const Multivector<Cl301, SA>& a, const Multivector<Cl301, SB
 inline double distance(const Plane& p, const Point& x) {
   return product<Product::outer, BladeSet{1} << e4::e0123>(p, x).template get<e4::e0123>();
 }
+// The same for a point known to have weight 1, written out by structure: the
+// e0 ∧ e123 term is the plane's e0 coefficient itself, one multiply fewer.
+// (Every vertex the narrowphase holds has weight 1: the face query's
+// innermost operation is this one.)
+inline double distance_of_unit_point(const Plane& p, const Point& x) {
+  return p.c[2] * x.c[1] - p.c[1] * x.c[2] - p.c[3] * x.c[0] + p.c[0];
+}
+// |y − x|² for points of weight 1: the squared length of the direction of
+// their join, whose components are the differences of theirs (no weights to
+// multiply by).
+inline double distance2_of_unit_points(const Point& x, const Point& y) {
+  const double a = y.c[0] - x.c[0], b = y.c[1] - x.c[1], c = y.c[2] - x.c[2];
+  return a * a + b * b + c * c;
+}
 
 // --- motors ---------------------------------------------------------------------------
 
@@ -175,13 +190,7 @@ inline Vec3 translation(const Motor& m) {
 // backends: traditional/rigid_body.cpp rotation_of, cga rotation_matrix).
 // Its columns are the images of the three directions (the motor's outermorphism).
 inline Eigen::Matrix3d rotation_matrix(const Motor& m) {
-  const double w = m.c[0], x = -m.c[6], y = m.c[5], z = -m.c[3];
-  const double s = 1 / (w * w + x * x + y * y + z * z);
-  Eigen::Matrix3d r;
-  r << w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y),
-       2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x),
-       2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z;
-  return s * r;
+  return geometry::rotation_of(m.c[0], -m.c[6], m.c[5], -m.c[3]);
 }
 
 // M X M̃ for a unit motor and a point of weight 1, by its structure (derived in

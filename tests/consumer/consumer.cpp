@@ -1,9 +1,11 @@
 // Uses the installed algebra as another project would: a Cl(3,0) rotor turns
 // e1 into e2, and in Cl(4,1) the inner product of a conformal point with a
-// dual sphere is ½(ρ² − |x − c|²) and of two points −½|x − y|². Exits 0 only
+// dual sphere is ½(ρ² − |x − c|²) and of two points −½|x − y|²; in Cl(3,0,1) a
+// plane and a point meet in their signed distance. Exits 0 only
 // when every answer agrees with its closed form to 1e-14 (a few roundings).
 #include <cga/algebra/cl3.hpp>
 #include <cga/geometry/entities.hpp>
+#include <pga/algebra/cl301.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -25,6 +27,8 @@ int main() {
   const Eigen::Vector3d x(1, 2, 2), c(0, 0, 0);
   expect("up(x) . S", scalar_product(up(x), sphere(c, 2.0)), 0.5 * (4.0 - 9.0));
   expect("up(x) . up(c)", scalar_product(up(x), up(c)), -0.5 * 9.0);
+  const Eigen::Vector3d n(0, 0, 1);
+  expect("(plane ^ point) e0123", gacompare::pga::distance(gacompare::pga::plane(n, 0.5), gacompare::pga::point(x)), 1.5);
   if (failures == 0) std::printf("consumer: gacompare::algebra from the install works\n");
   return failures == 0 ? 0 : 1;
 }

@@ -22,12 +22,7 @@ TEST(PgaRigidBodies, ScrewInterpolationBowsOffTheChordByTheSagitta) {
   using Bodies = pga::RigidBodies;
   const double theta = 0.5, d = 1.0;
   const auto state = [](const Eigen::Quaterniond& q, const Eigen::Vector3d& x) {
-    char body[512];
-    std::snprintf(body, sizeof body,
-                  R"({"name": "b", "shape": {"box": [0.1, 0.4, 0.9]}, "mass": 2.0, "position": [%.17g, %.17g, %.17g],)"
-                  R"( "orientation": [%.17g, %.17g, %.17g, %.17g]})",
-                  x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z());
-    const core::Scene scene = rigid_scene(body, "", "{}", 1.0, 0.5, R"({"method": "rk4", "dt": 1e-3})");
+    const core::Scene scene = posed_box_scene(q, x, "{}");
     const core::Model compiled = core::compile(scene);
     auto model = Bodies::build(scene, compiled);
     std::vector<double> y(Bodies::state_size(model));

@@ -22,7 +22,7 @@ Eigen::Quaterniond random_rotation() {
   return Eigen::Quaterniond(uniform(), uniform(), uniform(), uniform()).normalized();
 }
 template <class M>
-double distance(const M& a, const M& b) {
+double max_difference(const M& a, const M& b) {
   double worst = 0;
   for (int k = 0; k < M::size; ++k) worst = std::max(worst, std::abs(a.c[k] - b.c[k]));
   return worst;
@@ -35,7 +35,9 @@ TEST(Cl301, EntitiesMeetAndJoinAsTheHeaderSays) {
     const Vec3 n = random_vec(), x = random_vec(), a = random_vec(), p = random_vec(), q = random_vec();
     const double d = uniform();
     EXPECT_NEAR((plane(n, d) ^ point(x)).get<e4::e0123>(), n.dot(x) - d, 1e-14);
-    EXPECT_NEAR(distance(join(point(p), direction(a)), line(a, p.cross(a))), 0, 1e-14);
+    EXPECT_NEAR(distance_of_unit_point(plane(n, d), point(x)), distance(plane(n, d), point(x)), 1e-15);
+    EXPECT_NEAR(distance2_of_unit_points(point(p), point(q)), cga::norm2(join<kEuclideanLine>(point(p), point(q))), 1e-14);
+    EXPECT_NEAR(max_difference(join(point(p), direction(a)), line(a, p.cross(a))), 0, 1e-14);
     const Line pq = join(point(p), point(q));
     EXPECT_NEAR((line_direction(pq) - (q - p)).norm(), 0, 1e-14);
     const Vec3 w = random_vec(), v = random_vec(), f = random_vec(), t = random_vec();
@@ -48,7 +50,7 @@ TEST(Cl301, EntitiesMeetAndJoinAsTheHeaderSays) {
 TEST(Cl301, ComplementIsInvertedAndCompletesEachBlade) {
   Multivector<Cl301, Cl301::all> m;
   for (double& x : m.c) x = uniform();
-  EXPECT_EQ(distance(uncomplement(complement(m)), m), 0);
+  EXPECT_EQ(max_difference(uncomplement(complement(m)), m), 0);
   for (unsigned b = 0; b < Cl301::blade_count; ++b) {
     Multivector<Cl301, Cl301::all> blade{};
     blade.c[b] = 1;
@@ -97,7 +99,7 @@ TEST(Cl301, NormalisedMotorsAreUnit) {
     const auto [rho, kk] = study(normalised(drifted));
     EXPECT_NEAR(rho, 1, 1e-14);
     EXPECT_NEAR(kk, 0, 1e-14);
-    EXPECT_LT(distance(normalised(m), m), 1e-15);
+    EXPECT_LT(max_difference(normalised(m), m), 1e-15);
   }
 }
 
@@ -115,11 +117,11 @@ TEST(Cl301, ExpIsTheSeriesAndLogItsInverse) {
       term = cga::widen<Motor::blades>(cga::project<Motor::blades>(term * b)) / j;
       series += term;
     }
-    EXPECT_LT(distance(exp(b), series), 1e-12);
-    EXPECT_LT(distance(log(exp(b)), b), 1e-12);
+    EXPECT_LT(max_difference(exp(b), series), 1e-12);
+    EXPECT_LT(max_difference(log(exp(b)), b), 1e-12);
   }
   const Line shift = line(Vec3::Zero(), Vec3(1, 2, 3));
-  EXPECT_LT(distance(log(exp(shift)), shift), 1e-15);
+  EXPECT_LT(max_difference(log(exp(shift)), shift), 1e-15);
   const Vec3 p(1, 2, 0.5), axis = Vec3(0, 0, 1);
   const Motor turn = exp(-0.5 * (std::numbers::pi / 2) * line(axis, p.cross(axis)));
   EXPECT_NEAR((apply(turn, p) - p).norm(), 0, 1e-14);                                  // the axis stays
