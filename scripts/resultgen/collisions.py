@@ -1,6 +1,6 @@
 """docs/results/collisions.md: collision detection per stage (whole scenes)
-and per pair (the corpus, the micro benchmarks), cga against traditional,
-with the referees' agreement."""
+and per pair (the corpus, the micro benchmarks), each algebra against the
+others, with the referees' agreement."""
 import json
 import os
 
@@ -22,19 +22,28 @@ def _per_stage(ctx):
     names = collision_scenes(skip=("bodies_in_box",) if ctx.quick else ())
     out = ctx.scratch_dir("collision-stages")
     paths = [f"data/scenes/{n}.json" for n in names]
-    ctx.run([ctx.gacompare, "compare", *paths, "--backends", "traditional,cga", "--repeat", "5", "--out", out, "--quiet"],
+    ctx.run([ctx.gacompare, "compare", *paths, "--backends", "traditional,cga,pga", "--repeat", "5", "--out", out,
+             "--quiet"],
             quote=f"{ctx.gacompare} compare <the {len(names)} scenes that list collisions"
-                  f"{', less bodies_in_box' if ctx.quick else ''}> --backends traditional,cga --repeat 5 --out DIR")
+                  f"{', less bodies_in_box' if ctx.quick else ''}> --backends traditional,cga,pga --repeat 5 --out DIR")
     with open(os.path.join(out, "report.md")) as f:
         report = f.read()
+    # One category × stage table per pair of backends (cga / traditional,
+    # pga / traditional, pga / cga): their collision rows, the pair first.
+    lines = ["| pair | stage | scenes | denominator | numerator | ratio [95% CI] | verdict |",
+             "|---|---|---:|---:|---:|---:|---|"]
+    by_pair = {}
     for t in tables(report):
         head = [h.lower() for h in t[0]]
-        if head[:2] == ["category", "stage"]:
-            rows = [t[0][1:]] + [r[1:] for r in t[1:] if r[0] == "collisions"]
-            lines = ["| " + " | ".join(rows[0]) + " |", "|---|" + "---:|" * (len(rows[0]) - 2) + "---|"]
-            lines += ["| " + " | ".join(r) + " |" for r in rows[1:]]
-            return "\n".join(lines), rows, names
-    raise SystemExit("results: collisions: the summary report has no category × stage table")
+        if head[:2] != ["category", "stage"] or len(head) < 7:
+            continue
+        pair = head[5].split(" [")[0]
+        rows = [r[1:] for r in t[1:] if r[0] == "collisions"]
+        by_pair[pair] = rows
+        lines += ["| " + pair + " | " + " | ".join(r) + " |" for r in rows]
+    if not by_pair:
+        raise SystemExit("results: collisions: the summary report has no category × stage table")
+    return "\n".join(lines), by_pair, names
 
 
 def _collide(ctx, files, repeat, name):
@@ -71,24 +80,23 @@ def generate(ctx):
     broad = ratios(ctx, "broadphase_bench", "traditional_sweep", 5, 1, "_(100|1000)/" if q else None,
                    "candidates,tree_updates,pairs_kept,pairs,grown_pairs")
     headline = []
-    head = [h.lower() for h in stage_rows[0]]
-    ratio_col = next((i for i, h in enumerate(head) if h.startswith("cga / traditional")), None)
-    for r in stage_rows[1:]:
-        if ratio_col is not None and r[0].strip("`*") in ("narrowphase", "all stages"):
-            label = ("Scenes with collisions: the narrowphase stage, cga / traditional" if r[0].strip("`*") == "narrowphase"
-                     else None)
-            if label:
-                headline.append({"finding": label, "value": f"{r[ratio_col]}, {r[-1]}", "anchor": "#per-stage"})
-    cga = _row(corpus, "cga_manifold")
-    trad = _row(corpus, "traditional_manifold")
-    times = next((k for k in cga if k.startswith("×")), None)
+    for pair in ("cga / traditional", "pga / traditional"):
+        row = next((r for r in stage_rows.get(pair, []) if r[0].strip("`*") == "narrowphase"), None)
+        if row is not None:
+            headline.append({"finding": f"Scenes with collisions: the narrowphase stage, {pair}",
+                             "value": f"{row[4]}, {row[5]}", "anchor": "#per-stage"})
+    rows = {m: _row(corpus, m) for m in ("traditional_manifold", "cga_manifold", "pga_manifold")}
+    times = next((k for k in rows["cga_manifold"] if k.startswith("×")), None)
     if times:
-        headline.append({"finding": "One pair as the simulation meets it (separating axes, contact manifold), cga / traditional",
-                         "value": f"{cga[times]}×", "anchor": "#agreement-and-time-per-pair"})
-    agree = next((k for k in trad if k.startswith("yes/no")), None)
-    if agree and cga.get(agree):
+        headline.append({"finding": "One pair as the simulation meets it (separating axes, contact manifold), "
+                                    "cga and pga / traditional",
+                         "value": f"cga {rows['cga_manifold'][times]}×, pga {rows['pga_manifold'][times]}×",
+                         "anchor": "#agreement-and-time-per-pair"})
+    agree = next((k for k in rows["traditional_manifold"] if k.startswith("yes/no")), None)
+    if agree and all(r.get(agree) for r in rows.values()):
         headline.append({"finding": "Agreement with our exact separating-axis reference, yes/no over the corpus",
-                         "value": f"traditional {trad[agree]}, cga {cga[agree]}", "anchor": "#agreement-and-time-per-pair"})
+                         "value": ", ".join(f"{m.split('_')[0]} {r[agree]}" for m, r in rows.items()),
+                         "anchor": "#agreement-and-time-per-pair"})
     blocks = {"stages": stages, "corpus": corpus, "round": round_, "capsule": capsule, "detect": detect,
               "pairs": pairs, "round-pairs": round_pairs, "support": support, "spheres": spheres, "broadphase": broad}
     return {"blocks": blocks, "headline": headline}
