@@ -2,9 +2,9 @@
 // The stacking family (answers/stacking_family.hpp) through a backend: one test
 // per generated case, each run for its 10 simulated seconds with the contact
 // solver the family is built for and held to its statics answer at every
-// sample. Instantiated by tests/{traditional,cga}/stacking_test.cpp under the
-// `stacking` label; the long cases (tall columns, pyramids of 5 layers and
-// more) are left out by GACOMPARE_QUICK_TESTS=1, and the open ones
+// sample. Instantiated by tests/{traditional,cga,pga}/stacking_test.cpp under the
+// `stacking` label; the long cases (ten moving bodies or more: columns,
+// pyramids, dominoes) are left out by GACOMPARE_QUICK_TESTS=1, and the open ones
 // (StackCase::open) are skipped with their reason unless GACOMPARE_OPEN_CASES=1.
 #include "core/dynamics/simulator.hpp"
 #include "answers/stacking_family.hpp"
