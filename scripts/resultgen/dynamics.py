@@ -46,8 +46,8 @@ def _accuracy(ctx, scenes, target, repeat):
     return re.sub(r"^(#+) ", lambda m: "##" + m.group(1) + " ", re.sub(r"^# .*\n+", "", text, count=1), flags=re.M)
 
 
-def _accuracy_ratio(markdown, scene):
-    """cga/traditional of `scene` in accuracy.md: the last cell of the cga row
+def _accuracy_ratio(markdown, scene, backend="cga"):
+    """`backend`/traditional of `scene` in accuracy.md: the last cell of its row
     of the first table after the scene's own heading."""
     m = re.search(r"^#+ " + re.escape(scene) + r"\s*$", markdown, flags=re.M)
     if not m:
@@ -56,7 +56,7 @@ def _accuracy_ratio(markdown, scene):
         head = [h.lower() for h in t[0]]
         if "backend" in head:
             b = head.index("backend")
-            row = next((r for r in t[1:] if r[b] == "cga"), None)
+            row = next((r for r in t[1:] if r[b] == backend), None)
             return row[-1] if row else None
     return None
 
@@ -80,6 +80,10 @@ def rigid_bodies(ctx):
     if d:
         headline.append({"finding": "The same on the Dzhanibekov flip, to 1e-3 rad", "value": d,
                          "anchor": "#time-at-equal-accuracy"})
+    m = _accuracy_ratio(tight, "spinning_top", "pga")
+    if m:
+        headline.append({"finding": "The same, pga (motor) / traditional (matrix): spinning top to 1e-6 rad",
+                         "value": m, "anchor": "#time-at-equal-accuracy"})
     for op, label in (("derivative", "Rotor derivative / matrix derivative"),
                       ("vertices", "Moving a mesh: rotor sandwich / matrix product")):
         v = ratio_of(costs, op, "rotor")
