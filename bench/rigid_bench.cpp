@@ -1,15 +1,17 @@
-// Rigid-body stages, traditional matrix vs quaternion vs rotor:
+// Rigid-body stages, traditional matrix vs quaternion vs rotor vs motor:
 //   derivative  one body's dy/dt (ω from L, the rotation's rate, forces)
 //   step        one RK4 step of one body through the simulator's backend (four
 //               derivatives, each with its `forces` stage timer, and the update)
 //   vertices    moving a 1,000-vertex mesh into the world: R v + x for each vertex,
 //               with R a matrix, a quaternion, a rotor sandwich, or the rotor's
 //               matrix built once per body (the outermorphism, docs/architecture.md "Fair
-//               comparison")
+//               comparison"); for the motor, its closed-form sandwich on each point
+//               (pga/algebra/cl301.hpp apply: the translation included)
 // Names BM_<stage>/<representation>; scripts/bench-ratios.py --reference matrix
 // prints the ratio table of docs/results/rigid-bodies.md.
 #include "cga/backend.hpp"
 #include "core/dynamics/ode.hpp"
+#include "pga/backend.hpp"
 #include "traditional/backend.hpp"
 
 #include <benchmark/benchmark.h>
@@ -116,22 +118,34 @@ void BM_vertices_rotor_matrix(benchmark::State& s) {
   });
 }
 
+void BM_vertices_motor(benchmark::State& s) {
+  const pga::Motor m = pga::motor(kQ, kX);
+  vertices<Eigen::Vector3d>(s, [&](const auto& in, auto& out) {
+    for (int i = 0; i < kVertices; ++i) out[i] = pga::apply(m, in[i]);
+  });
+}
+
 void BM_derivative_matrix(benchmark::State& s) { derivative<traditional::RigidBodies>(s, "matrix"); }
 void BM_derivative_quaternion(benchmark::State& s) { derivative<traditional::RigidBodies>(s, "quaternion"); }
 void BM_derivative_rotor(benchmark::State& s) { derivative<cga::RigidBodies>(s, "matrix"); }
 void BM_step_matrix(benchmark::State& s) { step<traditional::Backend>(s, "matrix"); }
 void BM_step_quaternion(benchmark::State& s) { step<traditional::Backend>(s, "quaternion"); }
 void BM_step_rotor(benchmark::State& s) { step<cga::Backend>(s, "matrix"); }
+void BM_derivative_motor(benchmark::State& s) { derivative<pga::RigidBodies>(s, "matrix"); }
+void BM_step_motor(benchmark::State& s) { step<pga::Backend>(s, "matrix"); }
 BENCHMARK(BM_derivative_matrix)->Name("BM_derivative/matrix");
 BENCHMARK(BM_derivative_quaternion)->Name("BM_derivative/quaternion");
 BENCHMARK(BM_derivative_rotor)->Name("BM_derivative/rotor");
+BENCHMARK(BM_derivative_motor)->Name("BM_derivative/motor");
 BENCHMARK(BM_step_matrix)->Name("BM_step/matrix");
 BENCHMARK(BM_step_quaternion)->Name("BM_step/quaternion");
 BENCHMARK(BM_step_rotor)->Name("BM_step/rotor");
+BENCHMARK(BM_step_motor)->Name("BM_step/motor");
 BENCHMARK(BM_vertices_matrix)->Name("BM_vertices/matrix");
 BENCHMARK(BM_vertices_quaternion)->Name("BM_vertices/quaternion");
 BENCHMARK(BM_vertices_rotor)->Name("BM_vertices/rotor");
 BENCHMARK(BM_vertices_rotor_matrix)->Name("BM_vertices/rotor_matrix");
+BENCHMARK(BM_vertices_motor)->Name("BM_vertices/motor");
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 //   rigid_stability [--steps N]     (default 100000 fixed steps of 1e-3 s; the
 //                                    adaptive solvers run the same duration)
 #include "cga/backend.hpp"
+#include "pga/backend.hpp"
 #include "core/dynamics/simulator.hpp"
 #include "traditional/backend.hpp"
 
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
       row<traditional::Backend>("matrix (traditional)", scene(duration, method, "matrix", renorm));
       row<traditional::Backend>("quaternion (traditional)", scene(duration, method, "quaternion", renorm));
       row<cga::Backend>("rotor (cga)", scene(duration, method, "matrix", renorm));
+      row<pga::Backend>("motor (pga)", scene(duration, method, "matrix", renorm));
     }
   return 0;
 }

@@ -204,9 +204,15 @@ inline Eigen::Matrix3d rotation_matrix(const Motor& m) {
 // The same as the quaternion's x + 2w(k × x) + 2k × (k × x) plus the
 // translation, with the translation folded into the cross products.
 inline Vec3 apply(const Motor& m, const Vec3& x) {
-  const Vec3 q(m.c[6], -m.c[5], m.c[3]), u(m.c[1], m.c[2], m.c[4]);
-  const Vec3 c = q.cross(x) + u;
-  return x + 2 * (q.cross(c) - m.c[0] * c - m.c[7] * q);
+  // Scalars, not Eigen's cross(): its packet form shuffles more than it multiplies.
+  const double s = m.c[0], p = m.c[7], q0 = m.c[6], q1 = -m.c[5], q2 = m.c[3];
+  const double c0 = q1 * x.z() - q2 * x.y() + m.c[1];
+  const double c1 = q2 * x.x() - q0 * x.z() + m.c[2];
+  const double c2 = q0 * x.y() - q1 * x.x() + m.c[4];
+  const double d0 = q1 * c2 - q2 * c1 - s * c0 - p * q0;
+  const double d1 = q2 * c0 - q0 * c2 - s * c1 - p * q1;
+  const double d2 = q0 * c1 - q1 * c0 - s * c2 - p * q2;
+  return {x.x() + 2 * d0, x.y() + 2 * d1, x.z() + 2 * d2};
 }
 inline Point apply(const Motor& m, const Point& x) { return point(apply(m, coordinates(x))); }
 // On a direction (an ideal point), only the rotation acts: x + 2(q × c − s c), c = q × x.
