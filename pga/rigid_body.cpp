@@ -34,16 +34,11 @@ Layout layout(std::size_t b) {
   return {base, base + 8};
 }
 
-// The inertia map in the centre's frame with world axes, A[V] = (m v) + (I ω) e0
-// with the world inertia R I Rᵀ (R the motor's rotation, its coefficients once:
-// rotation_matrix), and its inverse, both swapping the line's two parts.
-Line inverse_inertia(const RigidBodies::Body& body, const Mat& r, const Line& momentum) {
-  const Vec3 w = r * (body.inv_inertia * (r.transpose() * line_moment(momentum)));
-  return line(w, body.inv_mass * line_direction(momentum));
+// The inverse inertia map in the centre's frame with world axes: the rate
+// A⁻¹[Π] = (I⁻¹ L) + (P/m) e0, swapping the line's two parts (I⁻¹ the world's).
+Line rate_of(const Mat& inv_inertia, double inv_mass, const Line& momentum) {
+  return line(inv_inertia * line_moment(momentum), inv_mass * line_direction(momentum));
 }
-// The rotor part of a motor as a unit quaternion (for observe and for the
-// Euclidean rotation angle of the error norm).
-Eigen::Quaterniond unit_quaternion(const Motor& m) { return quaternion_of(m).normalized(); }
 }  // namespace
 
 RigidBodies::Model RigidBodies::build(const core::Scene& scene, const core::Model& model) {
@@ -173,8 +168,9 @@ void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sampl
     const Motor mo = motor_at(y, at.motor);
     // The reported orientation is the motor's rotation normalised;
     // rotation_drift() says how far the stored motor is from a unit one.
-    const Eigen::Quaterniond q = unit_quaternion(mo);
-    const Line rate = inverse_inertia(body, rotation_matrix(mo), line_at(y, at.momentum));
+    const Eigen::Quaterniond q = quaternion_of(mo).normalized();
+    const Mat r = rotation_matrix(mo);
+    const Line rate = rate_of(r * body.inv_inertia * r.transpose(), body.inv_mass, line_at(y, at.momentum));
     auto& out = s.bodies[b];
     out.position = translation(mo);
     out.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
@@ -215,7 +211,7 @@ RigidBodies::Motion RigidBodies::motion(const Model& m, std::span<const double> 
   out.inv_mass = body.inv_mass;
   out.inv_inertia = r * body.inv_inertia * r.transpose();
   const Line momentum = line_at(y, at.momentum);
-  out.rate = line(out.inv_inertia * line_moment(momentum), body.inv_mass * line_direction(momentum));
+  out.rate = rate_of(out.inv_inertia, body.inv_mass, momentum);
   return out;
 }
 
@@ -225,7 +221,7 @@ RigidBodies::Arm RigidBodies::arm(const Motion& b, const Eigen::Vector3d& p, con
   // direction's weight 0 and the point's 1.
   const Vec3 r = p - b.x;
   const Line row = line(n, r.cross(n));
-  return {row, line(b.inv_inertia * line_moment(row), b.inv_mass * line_direction(row))};
+  return {row, rate_of(b.inv_inertia, b.inv_mass, row)};  // A⁻¹[J]
 }
 
 double RigidBodies::inverse_effective_mass(const Motion& b, const Arm& a) {
