@@ -9,11 +9,15 @@
   the repository, and every #anchor to a heading of that file; every
   repository path named in backticks (`core/scene.hpp`) exists, so a file
   that moves cannot leave a page pointing at its old place;
+- a scene's description says what happens in the scene: it names no file
+  of the repository (where it is tested, what implements it), which belongs
+  in the code, not in a page a reader sees in the report and the replay;
 - every page under docs/results/ and the README's headline table have been
   generated (scripts/results.py fills them).
 
 Prints one line per problem, naming the file and line; exit 1 if any.
 """
+import json
 import os
 import re
 import sys
@@ -31,6 +35,8 @@ TRACKING = re.compile(r"issue #?[0-9]+|\(#[0-9]+\)", re.I)
 HASH = re.compile(r"(?<![\w/.-])(?=[0-9a-f]*[a-f])(?=[0-9a-f]*[0-9])[0-9a-f]{7,40}(?![\w-])")
 LINK = re.compile(r"!?\[([^\]]*)\]\(([^)\s]+)\)")
 # A path into the repository in backticks; patterns (*, {a,b}, <N>) are not paths.
+# A repository file named in a scene's description.
+SOURCE_PATH = re.compile(r"(?:core|cga|pga|traditional|compare|tests|bench|scripts|answers)/[\w/.-]+|\b\w+\.(?:hpp|cpp|py)\b")
 NAMED_PATH = re.compile(r"`((?:core|cga|traditional|compare|tests|bench|scripts|data|docs|fuzz)/[^`\s*{<]+)`")
 
 
@@ -129,6 +135,15 @@ def main():
             m = TRACKING.search(line)
             if m:
                 problems.append(f"{rel}:{number}: an issue number: {m.group(0)}")
+    for rel in sorted(r for r in source_files() if r.startswith(os.path.join("data", "scenes"))):
+        try:
+            description = json.loads(read(rel)).get("description", "")
+        except ValueError as e:
+            problems.append(f"{rel}: not JSON ({e})")
+            continue
+        m = SOURCE_PATH.search(description)
+        if m:
+            problems.append(f"{rel}: the description names a source file ({m.group(0)}): say what happens in the scene")
     results = os.path.join(ROOT, "docs", "results")
     for f in sorted(os.listdir(results)):
         if f.endswith(".md") and "**Commit:**" not in read(os.path.join("docs", "results", f)):
