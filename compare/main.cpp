@@ -52,7 +52,7 @@ std::vector<core::Compiled> load_all(const std::vector<std::string>& files) {
   std::set<std::string> names;
   for (const auto& f : files) {
     std::error_code ec;
-    const auto& backends = compare::backend_names();
+    const auto& backends = compare::known_backends();
     if (std::find(backends.begin(), backends.end(), f) != backends.end() && !fs::is_regular_file(f, ec))
       throw input_error("'" + f + "' is a backend, not a scene file: give --backends comma-separated before the "
                         "scenes (--backends traditional,cga) or after them");
@@ -481,14 +481,14 @@ int main(int argc, char** argv) {
   double max_input_mb = static_cast<double>(core::kDefaultMaxInputBytes) / 1e6;
   app.add_option("--max-input-mb", max_input_mb, "most MB one input file may hold (default 256)")
       ->check(cli::positive_number());
-  const auto backend_check = cli::one_of("backend", compare::backend_names());
+  const auto backend_check = cli::one_of("backend", compare::known_backends());
   const auto repeat_check = cli::whole_number(1, compare::kMaxRepeats);
 
   std::string run_scene, run_backend, run_out;
   int run_repeat = 1;
   auto* run = app.add_subcommand("run", "run one scene through one backend");
   run->add_option("scene", run_scene, "scene file (JSON)")->required();
-  run->add_option("--backend", run_backend, "traditional, cga, pga or bullet")->required()->check(backend_check);
+  run->add_option("--backend", run_backend, "traditional, traditional-matrix, traditional-quaternion, cga, pga or bullet")->required()->check(backend_check);
   run->add_option("--out", run_out, "report folder (default reports/<scene>-<date>)")->default_str("");
   run->add_option("--repeat", run_repeat, "repeats, for the timing spread")->check(repeat_check);
 
@@ -506,7 +506,8 @@ int main(int argc, char** argv) {
   // cannot swallow them.
   auto* cmp_backends_opt = cmp->add_option("--backends", cmp_backends,
                                            "backends to run, exactly these, comma-separated (default: traditional, "
-                                           "cga, and bullet on scenes with collisions that Bullet can simulate)")
+                                           "cga, pga, traditional-quaternion beside traditional on rigid-body "
+                                           "scenes, and bullet on scenes with collisions that Bullet can simulate)")
                                ->delimiter(',')
                                ->allow_extra_args(false)
                                ->check(backend_check);

@@ -4,6 +4,7 @@
 #include "core/error.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -118,6 +119,63 @@ std::string run_gnuplot(const std::string& script, const std::string& title) {
 }
 
 }  // namespace
+
+std::string render_svg(const ForestPlot& plot) {
+  if (plot.rows.empty()) throw run_error("plot '" + plot.title + "': a forest plot needs a row");
+  std::ostringstream script;
+  script.precision(17);
+  double lo = 1, hi = 1;  // the axis always shows 1
+  const auto take = [&](double x) {
+    if (std::isfinite(x) && x > 0) lo = std::min(lo, x), hi = std::max(hi, x);
+  };
+  // Rows at y = 0, 1, ...; intervals and points in one block, scene dots in another.
+  // Summary rows and the others in two blocks, drawn with two line widths.
+  for (const bool bold : {true, false}) {
+    script << (bold ? "$summary" : "$rows") << " << EOD\n";
+    for (std::size_t i = 0; i < plot.rows.size(); ++i) {
+      const ForestRow& r = plot.rows[i];
+      if (r.bold != bold) continue;
+      const bool interval = std::isfinite(r.lo) && std::isfinite(r.hi);
+      script << r.ratio << ' ' << i << ' ' << (interval ? r.lo : r.ratio) << ' ' << (interval ? r.hi : r.ratio) << '\n';
+      take(r.ratio), take(r.lo), take(r.hi);
+    }
+    script << "EOD\n";
+  }
+  script << "$scenes << EOD\n";
+  bool dots = false;
+  for (std::size_t i = 0; i < plot.rows.size(); ++i)
+    for (const double x : plot.rows[i].scenes)
+      if (std::isfinite(x) && x > 0) script << x << ' ' << i << '\n', take(x), dots = true;
+  script << "EOD\n";
+  const double rows = static_cast<double>(plot.rows.size());
+  // Height grows with the rows, so the labels never overlap; 1000 wide, as every figure.
+  const int height = 150 + 26 * static_cast<int>(plot.rows.size());
+  script << "set terminal svg size 1000," << height << " dynamic enhanced font 'sans,12' background rgb 'white'\n"
+         << "set title " << quoted(plot.title) << " noenhanced\nset xlabel " << quoted(plot.xlabel) << "\n"
+         << "set logscale x\nset xrange [" << lo / 1.15 << ":" << hi * 1.15 << "]\nset yrange [" << rows - 0.5
+         << ":-0.5]\nset grid xtics\nset key below\nset format x '%.2g'\n"
+         << "set arrow from 1, graph 0 to 1, graph 1 nohead dt 2 lc rgb '#555555'\nset xtics (";
+  // Ticks a reader can read off a narrow log range (gnuplot's own fall on decades only).
+  bool first_tick = true;
+  for (const double t : {0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.5, 2.0, 3.0,
+                         5.0, 10.0, 20.0, 50.0, 100.0})
+    if (t >= lo / 1.15 && t <= hi * 1.15) script << (first_tick ? "" : ", ") << t, first_tick = false;
+  script << ")\nset ytics (";
+  for (std::size_t i = 0; i < plot.rows.size(); ++i)
+    script << (i ? ", " : "") << quoted(plot.rows[i].label) << " " << i;
+  script << ") noenhanced\nset lmargin 34\n"
+         << "plot ";
+  const bool summary = std::any_of(plot.rows.begin(), plot.rows.end(), [](const ForestRow& r) { return r.bold; });
+  const bool others = std::any_of(plot.rows.begin(), plot.rows.end(), [](const ForestRow& r) { return !r.bold; });
+  if (summary)
+    script << "$summary using 1:2:3:4 with xerrorbars lc rgb '#1f4e9c' pt 7 ps 1.3 lw 3 "
+              "title 'all stages: ratio and 95% interval'"
+           << (others ? ", " : "");
+  if (others) script << "$rows using 1:2:3:4 with xerrorbars lc rgb '#4a90d9' pt 7 ps 0.9 lw 1.5 title 'one stage'";
+  if (dots) script << ", $scenes using 1:2 with points pt 6 ps 0.7 lc rgb '#999999' title 'one scene'";
+  script << "\n";
+  return run_gnuplot(script.str(), plot.title);
+}
 
 void write_svg(const Plot& plot, const std::filesystem::path& file) { write_file_atomically(file, render_svg(plot)); }
 

@@ -28,6 +28,23 @@ struct Plot {
   std::vector<std::string> categories;
 };
 
+// A forest plot: one row per estimate, its 95% interval as a horizontal bar
+// through its point, and the single scenes behind it as small dots on the same
+// row, against a ratio axis (log scale) with a dashed line at 1 (no
+// difference). Rows are drawn top to bottom in order; a row whose interval is
+// NaN (too few repeats) shows its point alone.
+struct ForestRow {
+  std::string label;
+  double ratio = 1, lo = 0, hi = 0;
+  std::vector<double> scenes{};
+  bool bold = false;  // a summary row (a category's whole run), drawn heavier
+};
+struct ForestPlot {
+  std::string title, xlabel;
+  std::vector<ForestRow> rows;
+};
+std::string render_svg(const ForestPlot& plot);
+
 // Renders `plot` as SVG text. Throws run_error naming the cause when gnuplot is
 // missing or fails: never a silent missing figure.
 std::string render_svg(const Plot& plot);

@@ -4,6 +4,7 @@
 #include "compare/escape.hpp"
 #include "compare/replay.hpp"
 #include "compare/files.hpp"
+#include "compare/plot.hpp"
 #include "compare/results.hpp"
 #include "compare/sanity.hpp"
 #include "compare/stats.hpp"
@@ -50,6 +51,14 @@ Spread paired_ratio(const std::vector<double>& num, const std::vector<double>& d
 std::string time_cell(const std::vector<double>& secs) {
   const Spread s = spread(secs);
   return format_seconds(s.median) + " (" + format_seconds(s.min) + "–" + format_seconds(s.max) + ")";
+}
+// "4.10 ms (4.09–4.17)": the unit once, so that a row of backends fits the page.
+std::string compact_time_cell(const std::vector<double>& secs) {
+  const Spread s = spread(secs);
+  const double a = std::abs(s.median);
+  const double scale = a < 1e-6 ? 1e9 : a < 1e-3 ? 1e6 : a < 1 ? 1e3 : 1;
+  const char* unit = a < 1e-6 ? " ns" : a < 1e-3 ? " µs" : a < 1 ? " ms" : " s";
+  return fmt("%.3g", s.median * scale) + unit + " (" + fmt("%.4g", s.min * scale) + "–" + fmt("%.4g", s.max * scale) + ")";
 }
 std::string ratio_cell(const Spread& s) {
   return fmt("%.2f", s.median) + " (" + fmt("%.2f", s.min) + "–" + fmt("%.2f", s.max) + ")";
@@ -354,10 +363,51 @@ std::vector<BackendPair> pairs_of(const std::vector<PairSummaries>& pairs) {
   return out;
 }
 
+// "rotor against matrix (cga / traditional)" where every compared scene of the
+// category with bodies stores rotations alike on each side; the bare pair
+// otherwise. A headline on rigid bodies must say which representations it
+// compares: the rotor against the matrix is not GA against the quaternion.
+std::string pair_words(const PairSummaries& ps, Category c) {
+  std::string_view num, den;
+  bool mixed = false, any = false;
+  for (const auto& s : ps.scenes) {
+    if (s.category != c || !s.bodies || s.trajectories == Trajectories::not_compared) continue;
+    if (any && (s.numerator_form != num || s.denominator_form != den)) mixed = true;
+    num = s.numerator_form, den = s.denominator_form, any = true;
+  }
+  if (!any || mixed || num.empty() || den.empty()) return ps.pair.label();
+  return std::string(num) + " against " + std::string(den) + " (" + ps.pair.label() + ")";
+}
+
+// Why a rigid-body ratio is what it is: the time ratio is the ratio of solver
+// steps (the adaptive solver's error estimate sees each representation's own
+// truncation error) times the ratio of the cost of a step. Both from the runs.
+void rigid_body_reasons(std::ostringstream& o, const std::vector<PairSummaries>& pairs) {
+  std::vector<std::string> lines;
+  for (const auto& ps : pairs) {
+    const Aggregate a = aggregate(ps.scenes, Category::rigid_bodies, std::nullopt);
+    if (a.scenes == 0) continue;
+    double num_steps = 0, den_steps = 0;
+    for (const auto& s : ps.scenes)
+      if (s.category == Category::rigid_bodies && s.trajectories != Trajectories::not_compared)
+        num_steps += static_cast<double>(s.numerator_steps), den_steps += static_cast<double>(s.denominator_steps);
+    if (num_steps <= 0 || den_steps <= 0) continue;
+    const double steps = num_steps / den_steps, per_step = a.ratio.ratio / steps;
+    lines.push_back(pair_words(ps, Category::rigid_bodies) + ": " + fmt("%.0f", num_steps) + " solver steps against " +
+                    fmt("%.0f", den_steps) + " (" + fmt("%.2f", steps) + "×), each costing " + fmt("%.2f", per_step) +
+                    "× as much: " + fmt("%.2f", steps) + " × " + fmt("%.2f", per_step) + " = " +
+                    fmt("%.2f", a.ratio.ratio));
+  }
+  if (lines.empty()) return;
+  o << "\n**Why, on rigid bodies:** the time ratio is the ratio of solver steps (accepted and rejected, summed over "
+       "the scenes) times the ratio of the time per step.\n\n";
+  for (const auto& line : lines) o << "- " << line << ".\n";
+}
+
 // The verdict §1.1 asks for (does GA help?), for speed and agreement, stated
 // from the numbers above, pair by pair, and claiming no more than they show.
 void verdict(std::ostringstream& o, const std::vector<PairSummaries>& pairs) {
-  o << "\n**Verdict, from these numbers:** ";
+  o << "\n**Verdict, from these numbers:**\n\n";
   std::vector<std::string> evidence, shared;
   for (const Category c : kCategories) {
     std::vector<Aggregate> per_pair;
@@ -374,7 +424,7 @@ void verdict(std::ostringstream& o, const std::vector<PairSummaries>& pairs) {
       std::vector<std::string> parted;
       for (const auto& s : pairs[i].scenes)
         if (s.category == c && s.trajectories == Trajectories::parted) parted.push_back(md_text(s.name));
-      parts.push_back(to_string(a.verdict, pairs[i].pair.numerator) + ", " + pairs[i].pair.label() + " " +
+      parts.push_back(to_string(a.verdict, pairs[i].pair.numerator) + ", " + pair_words(pairs[i], c) + " " +
                       interval_cell(a.ratio) +
                       (a.scenes < scenes ? " over " + std::to_string(a.scenes) + " scene" + (a.scenes == 1 ? "" : "s")
                                          : "") +
@@ -384,10 +434,10 @@ void verdict(std::ostringstream& o, const std::vector<PairSummaries>& pairs) {
         .push_back(std::string(to_string(c)) + " (" + std::to_string(scenes) + " scene" + (scenes == 1 ? "" : "s") +
                    "): " + joined(parts, "; "));
   }
-  if (evidence.empty()) o << "no rigid-body or collision scene was compared, so there is no evidence either way";
-  o << joined(evidence, ". ") << ". ";
+  if (evidence.empty()) o << "- No rigid-body or collision scene was compared, so there is no evidence either way.\n";
+  for (const auto& text : evidence) o << "- " << text << ".\n";
   for (const auto& text : shared)
-    o << "The " << text << ": the same code runs in every backend, so this is reported, not evidence. ";
+    o << "- The " << text << ": the same code runs in every backend, so this is reported, not evidence.\n";
 
   for (const auto& ps : pairs) {
     int identical = 0, agree = 0, own = 0;
@@ -403,8 +453,13 @@ void verdict(std::ostringstream& o, const std::vector<PairSummaries>& pairs) {
       if (s.trajectories == Trajectories::own_settings) ++own;
       if (s.trajectories == Trajectories::not_compared) not_compared.push_back(md_text(s.name + " (" + s.not_compared_why + ")"));
     }
-    const std::size_t n = ps.scenes.size();
-    o << "Trajectories of " << ps.pair.numerator << " against " << ps.pair.denominator << ": ";
+    // Scenes where one of the pair did not run at all (the quaternion twin on
+    // a collision scene) are not counted: nothing was asked of them.
+    std::size_t n = 0;
+    for (const auto& s : ps.scenes) n += s.not_compared_why.rfind("needs both", 0) != 0;
+    std::erase_if(not_compared, [](const std::string& t) { return t.find("(needs both") != std::string::npos; });
+    if (n == 0) continue;
+    o << "- Trajectories of " << ps.pair.numerator << " against " << ps.pair.denominator << ": ";
     if (own)
       o << "each ran at its own setting, the one reaching the same accuracy (`--accuracy`), on " << own << " of " << n
         << " scenes, so they differ by design and no agreement between them is claimed"
@@ -416,86 +471,159 @@ void verdict(std::ostringstream& o, const std::vector<PairSummaries>& pairs) {
           << fmt("%.2g", 100 * closest->tolerance_used) << "% of " << fmt("%.0e", closest->tolerance.metres) << " m)";
       if (!parted.empty()) o << "; parted (chaotic) on " << joined(parted, ", ") << ", where no agreement is claimed";
       if (!not_compared.empty()) o << "; not compared on " << joined(not_compared, ", ");
-      o << ". ";
+      o << ".";
     }
+    o << "\n";
   }
   std::vector<std::string> folders;
-  for (const std::string_view b : backends_of(pairs_of(pairs))) folders.push_back(std::string("`").append(b).append("/`"));
-  o << "Coding simplicity is not measured here: compare " << and_list(folders) << " side by side.\n";
+  for (const std::string_view b : backends_of(pairs_of(pairs))) {
+    std::string folder("`");  // traditional-quaternion: traditional/ (appended, not +: GCC 12's -Wrestrict)
+    folder.append(b.substr(0, b.find('-'))).append("/`");
+    if (std::find(folders.begin(), folders.end(), folder) == folders.end()) folders.push_back(folder);
+  }
+  o << "\nCoding simplicity is not measured here: compare " << and_list(folders) << " side by side.\n";
+  rigid_body_reasons(o, pairs);
 }
 
 }  // namespace
 
-std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
-                              double equal_accuracy) {
-  const std::vector<PairSummaries> pairs = summarise(results, equal_accuracy > 0);
+namespace {
+// The overview in the order a reader wants it: what was run, the answer (the
+// verdict, and in report.html the figures before it), then the evidence.
+struct SummaryParts {
+  std::string head, answer, tables;
+};
+
+SummaryParts summary_parts(const std::vector<SceneResult>& results, const std::vector<PairSummaries>& pairs,
+                           const MachineInfo& machine, int repeats) {
   const std::vector<BackendPair> compared = pairs_of(pairs);
   const std::vector<std::string_view> backends = backends_of(compared);
-  std::vector<std::string> backend_names;
-  for (const std::string_view b : backends) backend_names.push_back(std::string(b));
-  // Apart and trajectories hold one value per pair, in the ratio columns' order.
-  std::string per_pair;
-  if (compared.size() > 1) {
-    std::vector<std::string> labels;
-    for (const BackendPair p : compared) labels.push_back(p.label());
-    per_pair = " (" + joined(labels, "; ") + ")";
+  SummaryParts parts;
+  {
+    std::ostringstream o;
+    o << "# gacompare: " << results.size() << " scenes\n\n" << header(machine, repeats, compared) << "\n";
+    parts.head = o.str();
+  }
+  {
+    std::ostringstream o;
+    verdict(o, pairs);
+    // Physical sanity (compare/sanity.hpp), every warning of every scene, where
+    // nobody reading the summary can miss it.
+    for (const auto& r : results)
+      for (const auto& w : sanity_warnings(sanity_checks(r)))
+        o << "\n**WARNING, physical sanity:** " << md_text(r.scene.name + ": " + w) << "\n";
+    parts.answer = o.str();
   }
   std::ostringstream o;
-  o << "# gacompare: " << results.size() << " scenes\n\n" << header(machine, repeats, compared) << "\n";
-  o << "| scene | category |";
-  for (const auto& b : backend_names) o << " " << b << " |";
-  for (const BackendPair p : compared) o << " " << p.label() << " [95% CI] |";
-  o << " apart (m)" << per_pair << " | apart (rad)" << per_pair << " | tolerance d (m) | trajectories" << per_pair
-    << " | energy change " << joined(backend_names, " / ") << " |\n|---|---|";
-  for (std::size_t i = 0; i < backends.size() + compared.size() + 3; ++i) o << "---:|";
-  o << "---|---:|\n";
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    const SceneResult& r = results[i];
-    const SceneSummary& first = pairs.front().scenes[i];
-    std::vector<std::string> times, energies, ratios, apart_m, apart_rad, trajectories;
-    for (const std::string_view name : backends) {
-      const BackendResult* b = find(r, name);
-      times.push_back(b ? time_cell(total_seconds(*b)) : "–");
-      energies.push_back(b ? fmt("%.2e", energy_drift(b->run)) : "–");
+  // Each backend's time, then its energy change, per scene: one column per
+  // backend, two tables, so that neither outgrows the page.
+  const auto per_backend = [&](const std::string& title, const std::string& what, const auto& cell) {
+    o << "\n## " << title << "\n\n" << what << "\n\n| scene | category | tolerance d (m) |";
+    for (const std::string_view b : backends) o << " " << b << " |";
+    o << "\n|---|---|---:|";
+    for (std::size_t i = 0; i < backends.size(); ++i) o << "---:|";
+    o << "\n";
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      const SceneResult& r = results[i];
+      const SceneSummary& first = pairs.front().scenes[i];
+      o << "| [" << md_text(r.scene.name) << "](" << file_name_for(r.scene.name) << "/report.md) | "
+        << to_string(first.category) << " | " << fmt("%.0e", first.tolerance.metres)
+        << (first.tolerance.source == "check.max_divergence" ? "" : " (penetration)") << " |";
+      for (const std::string_view name : backends) {
+        const BackendResult* b = find(r, name);
+        o << " " << (b ? cell(*b) : std::string("–")) << " |";
+      }
+      o << "\n";
     }
+  };
+  per_backend("Times", "Each backend's whole run: the median over repeats, min–max in brackets.",
+              [](const BackendResult& b) { return compact_time_cell(total_seconds(b)); });
+  per_backend("Energy", "Each backend's largest energy change over the run, relative to the scene's energy scale.",
+              [](const BackendResult& b) { return fmt("%.2e", energy_drift(b.run)); });
+  // Each pair that ran on a scene: its ratio, how far apart the two ran, and
+  // whether they followed one trajectory. One row per scene and pair, so the
+  // table stays as wide as its six columns however many backends ran.
+  o << "\n## Pairs\n\n| scene | pair | ratio [95% CI] | apart (m) | apart (rad) | trajectories |\n"
+       "|---|---|---:|---:|---:|---|\n";
+  for (std::size_t i = 0; i < results.size(); ++i)
     for (const auto& ps : pairs) {
       const SceneSummary& s = ps.scenes[i];
+      if (s.trajectories == Trajectories::not_compared && s.not_compared_why.rfind("needs both", 0) == 0) continue;
       const bool compared_here = s.trajectories != Trajectories::not_compared;
-      ratios.push_back(!compared_here ? "–"
-                       : s.trajectories == Trajectories::parted
-                           ? interval_cell(scene_ratio(s, std::nullopt)) + " per unit of work (whole run " +
-                                 interval_cell(scene_ratio(s, std::nullopt, true)) + ")"
-                           : interval_cell(scene_ratio(s, std::nullopt)));
-      apart_m.push_back(compared_here ? fmt("%.2e", s.divergence) : "–");
-      apart_rad.push_back(compared_here && s.bodies ? fmt("%.2e", s.orientation_divergence) : "–");
-      trajectories.push_back(to_string(s.trajectories));
+      const std::string ratio =
+          !compared_here ? "–"
+          : s.trajectories == Trajectories::parted
+              ? interval_cell(scene_ratio(s, std::nullopt)) + " per unit of work (whole run " +
+                    interval_cell(scene_ratio(s, std::nullopt, true)) + ")"
+              : interval_cell(scene_ratio(s, std::nullopt));
+      const std::string forms =
+          s.numerator_form.empty() ? "" : " (" + std::string(s.numerator_form) + " / " + std::string(s.denominator_form) + ")";
+      o << "| " << md_text(s.name) << " | " << ps.pair.label() << forms << " | " << ratio << " | "
+        << (compared_here ? fmt("%.2e", s.divergence) : "–") << " | "
+        << (compared_here && s.bodies ? fmt("%.2e", s.orientation_divergence) : "–") << " | "
+        << (compared_here ? to_string(s.trajectories) : md_text("not compared: " + s.not_compared_why)) << " |\n";
     }
-    o << "| [" << md_text(r.scene.name) << "](" << file_name_for(r.scene.name) << "/report.md) | "
-      << to_string(first.category) << " | " << joined(times, " | ") << " | " << joined(ratios, " | ") << " | "
-      << joined(apart_m, "; ") << " | " << joined(apart_rad, "; ") << " | " << fmt("%.0e", first.tolerance.metres)
-      << (first.tolerance.source == "check.max_divergence" ? "" : " (penetration)") << " | "
-      << joined(trajectories, "; ") << " | " << joined(energies, " / ") << " |\n";
-  }
   o << "\nRatios are of the mean time per repeat, whole run; where the trajectories parted, per unit of each "
-       "stage's work (below). Apart: the largest distance between the backends' particles and bodies' centres "
+       "stage's work (below). Apart: the largest distance between the two backends' particles and bodies' centres "
        "of mass, and angle between their bodies' orientations, over all samples. Tolerance d: the scene's "
        "`check.max_divergence`, or on a collision scene its penetration tolerance where that is smaller. Within "
        "it: every position within d and every moving body's orientation within d / r (r the body's radius: a "
        "turn by d / r moves none of its points further than d), the bounds `check` applies between backends. No "
-       "agreement is claimed beyond it."
-    << (per_pair.empty() ? "" : " Apart and trajectories give one value per pair, in the order the header names.")
-    << "\n";
-
-  // Physical sanity (compare/sanity.hpp), every warning of every scene, where
-  // nobody reading the summary can miss it.
-  std::vector<std::string> warnings;
-  for (const auto& r : results)
-    for (const auto& w : sanity_warnings(sanity_checks(r))) warnings.push_back(md_text(r.scene.name + ": " + w));
-  for (const auto& w : warnings) o << "\n**WARNING, physical sanity:** " << w << "\n";
-
+       "agreement is claimed beyond it.\n";
   for (std::size_t k = 0; k < pairs.size(); ++k) category_tables(o, pairs[k], repeats, k == 0);
-  verdict(o, pairs);
-  return o.str();
+  parts.tables = o.str();
+  return parts;
+}
+
+// The forest plot of the answer: each evidence category's ratio of the first
+// pair (cga/traditional), whole run then stage by stage, and each other pair's
+// whole run, every row with its 95% interval and the scenes behind it.
+ForestPlot forest(const std::vector<PairSummaries>& pairs) {
+  ForestPlot f{"Time ratios, 95% intervals: below 1 the first backend named is faster", "time ratio (log scale)", {}};
+  for (const Category c : kCategories) {
+    if (!is_evidence(c)) continue;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const PairSummaries& ps = pairs[k];
+      const Aggregate overall = aggregate(ps.scenes, c, std::nullopt);
+      if (overall.scenes == 0) continue;
+      const auto row = [&](const std::string& label, const Aggregate& a, std::optional<Stage> stage, bool bold) {
+        ForestRow r{label, a.ratio.ratio, a.ratio.lo, a.ratio.hi, {}, bold};
+        for (const auto& s : ps.scenes)
+          if (s.category == c && !compared_seconds(s, stage).numerator.empty()) r.scenes.push_back(scene_ratio(s, stage).ratio);
+        f.rows.push_back(std::move(r));
+      };
+      const std::string pair = ps.pair.label();
+      row(std::string(to_string(c)) + ": " + pair, overall, std::nullopt, true);
+      if (k != 0) continue;  // the stages of the headline pair only: the figure stays readable
+      for (int st = 0; st < core::kStageCount; ++st) {
+        const auto stage = static_cast<Stage>(st);
+        const Aggregate a = aggregate(ps.scenes, c, stage);
+        if (a.scenes > 0) row("   " + std::string(core::stage_name(stage)), a, stage, false);
+      }
+    }
+  }
+  return f;
+}
+}  // namespace
+
+std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
+                              double equal_accuracy) {
+  const SummaryParts p = summary_parts(results, summarise(results, equal_accuracy > 0), machine, repeats);
+  return p.head + p.answer + p.tables;
+}
+
+std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
+                                double equal_accuracy) {
+  const std::vector<PairSummaries> pairs = summarise(results, equal_accuracy > 0);
+  const SummaryParts p = summary_parts(results, pairs, machine, repeats);
+  std::string figures;
+  if (const ForestPlot f = forest(pairs); !f.rows.empty())
+    figures += "<figure id=\"forest\">" + inline_svg(render_svg(f)) +
+               "<figcaption>Each row: a ratio of times over a category's scenes, weighted by time, with its 95% "
+               "bootstrap interval over paired repeats; grey circles: the single scenes behind it. Left of the dashed "
+               "line the first backend named is faster. Stages are shown for the first pair.</figcaption></figure>\n";
+  return html_page("gacompare", markdown_to_html(p.head) + figures + markdown_to_html(p.answer) + markdown_to_html(p.tables),
+                   "overview");
 }
 
 void write_reports(const std::filesystem::path& dir, const std::vector<SceneResult>& results,

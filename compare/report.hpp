@@ -26,6 +26,8 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
 // report.html: the same tables (converted from the markdown, so they never
 // disagree) and inline SVG figures drawn by gnuplot — energy change, constraint
 // violation, rotation drift and the divergence between backends over time.
+// The summary's page answers first: the forest plot of the ratios, the
+// verdict, then the tables.
 std::string scene_report_html(const SceneResult& r, const MachineInfo& machine, int repeats);
 std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
                                 double equal_accuracy = 0);
@@ -33,7 +35,10 @@ std::string summary_report_html(const std::vector<SceneResult>& results, const M
 // self-contained page around a body.
 std::string markdown_to_html(const std::string& md);
 std::string html_escape(const std::string& text);  // <, >, & and " as entities
-std::string html_page(const std::string& title, const std::string& body);
+// `body_class` "overview": the summary's wider page, whose table cells never wrap.
+std::string html_page(const std::string& title, const std::string& body, const std::string& body_class = "");
+// An SVG document as an element to inline in a page (its XML prologue dropped).
+std::string inline_svg(const std::string& svg);
 
 // Writes results.json, report.md, report.html, stages.csv, trajectories.csv and
 // replay.html (compare/replay.hpp) for one scene into `dir`, or, for

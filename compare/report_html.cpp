@@ -118,12 +118,12 @@ std::vector<std::string> cells(const std::string& row) {
 
 }  // namespace
 
-// Headings, paragraphs and pipe tables: the markdown report.md is made of.
+// Headings, paragraphs, lists ("- ") and pipe tables: the markdown report.md is made of.
 std::string markdown_to_html(const std::string& md) {
   std::istringstream in(md);
   std::ostringstream o;
   std::string line;
-  bool in_table = false, header = false;
+  bool in_table = false, header = false, in_list = false;
   while (std::getline(in, line)) {
     if (!line.empty() && line[0] == '|') {
       if (!in_table) {
@@ -141,11 +141,22 @@ std::string markdown_to_html(const std::string& md) {
       o << "</table>\n";
       in_table = false;
     }
+    if (line.rfind("- ", 0) == 0) {  // a list item; the list ends at the first line that is not one
+      if (!in_list) o << "<ul>\n";
+      in_list = true;
+      o << "<li>" << inline_md(line.substr(2)) << "</li>\n";
+      continue;
+    }
+    if (in_list) {
+      o << "</ul>\n";
+      in_list = false;
+    }
     if (line.rfind("## ", 0) == 0) o << "<h2>" << inline_md(line.substr(3)) << "</h2>\n";
     else if (line.rfind("# ", 0) == 0) o << "<h1>" << inline_md(line.substr(2)) << "</h1>\n";
     else if (!line.empty()) o << "<p>" << inline_md(line) << "</p>\n";
   }
   if (in_table) o << "</table>\n";
+  if (in_list) o << "</ul>\n";
   return o.str();
 }
 
@@ -212,6 +223,15 @@ std::string mark_coinciding(Plot& p) {
   return note;
 }
 
+}  // namespace
+
+std::string inline_svg(const std::string& svg) {
+  const auto start = svg.find("<svg");  // drop the XML prologue: the SVG is inline
+  return start == std::string::npos ? svg : svg.substr(start);
+}
+
+namespace {
+
 std::string figures(const SceneResult& r) {
   std::ostringstream o;
   bool constrained = false, bodies = false;
@@ -266,9 +286,7 @@ std::string figures(const SceneResult& r) {
   o << "<h2>Figures</h2>\n";
   for (auto& p : plots) {
     const std::string note = mark_coinciding(p);
-    std::string svg = render_svg(p);
-    const auto start = svg.find("<svg");  // drop the XML prologue: the SVG is inline
-    o << "<figure>" << (start == std::string::npos ? svg : svg.substr(start));
+    o << "<figure>" << inline_svg(render_svg(p));
     if (!note.empty()) o << "<figcaption>" << html_escape(note) << "</figcaption>";
     o << "</figure>\n";
   }
@@ -277,23 +295,21 @@ std::string figures(const SceneResult& r) {
 
 }  // namespace
 
-std::string html_page(const std::string& title, const std::string& body) {
+std::string html_page(const std::string& title, const std::string& body, const std::string& body_class) {
   return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + html_escape(title) +
          "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}"
          "table{border-collapse:collapse;margin:1em 0}th,td{border:1px solid #ccc;padding:.3em .6em}"
          "td{text-align:right}td:first-child{text-align:left}th{background:#f3f3f3}"
-         "figure{margin:1em 0}figure svg{width:100%;height:auto;display:block}figcaption{font-size:.9em;color:#555}code{background:#f3f3f3;padding:0 .2em}</style>"
-         "</head><body>\n" +
+         "figure{margin:1em 0}figure svg{width:100%;height:auto;display:block}figcaption{font-size:.9em;color:#555}code{background:#f3f3f3;padding:0 .2em}"
+         // The overview: a wider page whose table cells never wrap (its tables are laid out to fit it).
+         "body.overview{max-width:1500px}body.overview td,body.overview th{white-space:nowrap}"
+         "body.overview p,body.overview figure{max-width:1100px}</style>"
+         "</head><body" + (body_class.empty() ? std::string() : " class=\"" + html_escape(body_class) + "\"") + ">\n" +
          body + "</body></html>\n";
 }
 
 std::string scene_report_html(const SceneResult& r, const MachineInfo& machine, int repeats) {
   return html_page(r.scene.name + " — gacompare", markdown_to_html(scene_report_md(r, machine, repeats)) + figures(r));
-}
-
-std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
-                                double equal_accuracy) {
-  return html_page("gacompare", markdown_to_html(summary_report_md(results, machine, repeats, equal_accuracy)));
 }
 
 }  // namespace gacompare::compare

@@ -18,12 +18,37 @@ const std::vector<std::string>& backend_names() {
   return names;
 }
 
+const std::vector<std::string>& known_backends() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v = backend_names();
+    v.insert(v.begin() + 1, {std::string(kTraditionalRepresentations[0]), std::string(kTraditionalRepresentations[1])});
+    return v;
+  }();
+  return names;
+}
+
+std::string_view representation_twin(const core::Scene& scene) {
+  return scene.rigid_body.rotation == core::Rotation::matrix ? kTraditionalRepresentations[1]
+                                                              : kTraditionalRepresentations[0];
+}
+
 core::Run run_backend(const core::Scene& scene, std::shared_ptr<const core::Model> model, std::string_view backend) {
+  for (const std::string_view twin : kTraditionalRepresentations)
+    if (backend == twin) {
+      // The model does not depend on the representation: only the traditional
+      // backend's state layout reads it.
+      core::Scene as = scene;
+      as.rigid_body.rotation = twin == kTraditionalRepresentations[0] ? core::Rotation::matrix : core::Rotation::quaternion;
+      core::Run run = core::simulate<traditional::Backend>(as, std::move(model));
+      run.backend = std::string(twin);
+      return run;
+    }
   if (backend == traditional::Backend::name) return core::simulate<traditional::Backend>(scene, std::move(model));
   if (backend == cga::Backend::name) return core::simulate<cga::Backend>(scene, std::move(model));
   if (backend == pga::Backend::name) return core::simulate<pga::Backend>(scene, std::move(model));
   if (backend == "bullet") return simulate_bullet(scene, *model);  // throws input_error where Bullet cannot run it
-  throw input_error("unknown backend '" + std::string(backend) + "' (expected traditional, cga, pga or bullet)");
+  throw input_error("unknown backend '" + std::string(backend) +
+                    "' (expected traditional, traditional-matrix, traditional-quaternion, cga, pga or bullet)");
 }
 
 core::Run run_backend(const core::Scene& scene, std::string_view backend) {
@@ -59,9 +84,14 @@ std::vector<std::string> backends_for(const core::Scene& scene, const std::vecto
         throw input_error(scene.file.string() + ": bullet: " + why);
     return requested;
   }
+  const bool rigid = !scene.bodies.empty() && !scene.find_effect<core::Collisions>();
+  const std::string twin(representation_twin(scene));
+  const bool twin_named = std::find(requested.begin(), requested.end(), twin) != requested.end();
   std::vector<std::string> out;
-  for (const auto& b : requested)
+  for (const auto& b : requested) {
     if (b != "bullet" || (scene.find_effect<core::Collisions>() && unsupported().empty())) out.push_back(b);
+    if (b == traditional::Backend::name && rigid && !twin_named) out.push_back(twin);
+  }
   return out;
 }
 

@@ -13,16 +13,32 @@
 
 namespace gacompare::compare {
 
-// The backends that can run a scene, in report order: traditional, cga, and
-// "bullet", the whole-simulation reference (compare/bullet_world.hpp).
+// The backends that can run a scene, in report order: traditional, cga, pga
+// and "bullet", the whole-simulation reference (compare/bullet_world.hpp).
 const std::vector<std::string>& backend_names();
+
+// The traditional backend in one rotation representation, whatever the scene
+// writes: "traditional-matrix" (Ṙ = ω̂ R, 9 numbers) and
+// "traditional-quaternion" (q̇ = ½ ω q, 4 numbers). Plain "traditional" runs
+// the representation the scene writes (rigid_body.rotation, matrix unless it
+// says otherwise). The quaternion is the rotor's algebraic twin, so "cga
+// against traditional" on rigid bodies compares the rotor with the matrix;
+// the rotor against the quaternion needs the twin run beside it.
+inline constexpr std::string_view kTraditionalRepresentations[] = {"traditional-matrix", "traditional-quaternion"};
+// The twin of a scene's "traditional": the representation it does not write.
+std::string_view representation_twin(const core::Scene& scene);
+// backend_names() and the two representations: what --backend and --backends accept.
+const std::vector<std::string>& known_backends();
 
 // How a list of backends is read.
 enum class Selection {
   // The list, less bullet on the scenes it does not suit: bullet runs only on
   // scenes that list the collisions effect and that Bullet can simulate
-  // (bullet_unsupported() == ""), and is left out silently elsewhere. The CLI's
-  // default (compare without --backends) is backend_names() read this way.
+  // (bullet_unsupported() == ""), and is left out silently elsewhere. On a
+  // rigid-body scene (bodies, no collisions) "traditional" is followed by its
+  // representation_twin, so the rotor meets both the matrix and the quaternion
+  // with no key in the scene. The CLI's default (compare without --backends)
+  // is backend_names() read this way.
   where_supported,
   // The list as given (the CLI's --backends, even naming all three, and run
   // --backend): bullet on a scene Bullet cannot run is an input_error, raised

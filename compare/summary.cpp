@@ -86,7 +86,19 @@ std::vector<std::string_view> backends_of(std::span<const BackendPair> pairs) {
   for (const BackendPair p : pairs)
     for (const std::string_view b : {p.denominator, p.numerator})
       if (std::find(out.begin(), out.end(), b) == out.end()) out.push_back(b);
+  const auto& order = known_backends();
+  const auto rank = [&](std::string_view b) { return std::find(order.begin(), order.end(), b) - order.begin(); };
+  std::stable_sort(out.begin(), out.end(), [&](std::string_view a, std::string_view b) { return rank(a) < rank(b); });
   return out;
+}
+
+std::string_view representation(std::string_view backend, const core::Scene& scene) {
+  if (backend == "cga") return "rotor";
+  if (backend == "pga") return "motor";
+  if (backend == kTraditionalRepresentations[0]) return "matrix";
+  if (backend == kTraditionalRepresentations[1]) return "quaternion";
+  if (backend == "traditional") return scene.rigid_body.rotation == core::Rotation::matrix ? "matrix" : "quaternion";
+  return "";
 }
 
 StateErrors pair_divergence(const SceneResult& r, BackendPair p) {
@@ -165,6 +177,7 @@ SceneSummary summarise_scene(const SceneResult& r, BackendPair pair, bool own_se
   s.category = category_of(r.scene);
   s.tolerance = agreement_tolerance(r.scene);
   s.bodies = !r.scene.bodies.empty();
+  if (s.bodies) s.numerator_form = representation(pair.numerator, r.scene), s.denominator_form = representation(pair.denominator, r.scene);
   const BackendResult* num = find_backend(r, pair.numerator);
   const BackendResult* den = find_backend(r, pair.denominator);
   if (!num || !den) {
@@ -177,6 +190,8 @@ SceneSummary summarise_scene(const SceneResult& r, BackendPair pair, bool own_se
   for (const auto* b : {den, num})
     if (b->run.error) s.not_compared_why = b->run.backend + " stopped early";
   s.tolerance_used = tolerance_used(r, pair, s.tolerance.metres);
+  s.numerator_steps = num->run.solver.steps_accepted + num->run.solver.steps_rejected;
+  s.denominator_steps = den->run.solver.steps_accepted + den->run.solver.steps_rejected;
   s.trajectories = !s.not_compared_why.empty() ? Trajectories::not_compared
                    : own_settings                ? Trajectories::own_settings
                                                  : classify(s.divergence, s.orientation_divergence, s.tolerance_used);
@@ -274,7 +289,11 @@ json pair_json(const PairSummaries& ps) {
               {"tolerance_used", s.tolerance_used},
               {"tolerance", s.tolerance.metres},
               {"tolerance_source", s.tolerance.source}};
-    if (s.bodies) j["max_orientation_difference_rad"] = s.orientation_divergence;
+    if (s.bodies) {
+      j["max_orientation_difference_rad"] = s.orientation_divergence;
+      j["rotation"] = {{std::string(p.denominator), std::string(s.denominator_form)},
+                       {std::string(p.numerator), std::string(s.numerator_form)}};
+    }
     if (s.trajectories == Trajectories::not_compared) {
       j["not_compared"] = s.not_compared_why;
     } else {
@@ -284,6 +303,7 @@ json pair_json(const PairSummaries& ps) {
       j["ratio"] = r.ratio;
       j["ci95"] = json::array({r.lo, r.hi});
       j["verdict"] = to_string(speed_verdict(r), p.numerator);
+      j["solver_steps"] = {{std::string(p.denominator), s.denominator_steps}, {std::string(p.numerator), s.numerator_steps}};
       if (parted) {
         const RatioInterval whole = scene_ratio(s, std::nullopt, true);
         j["whole_run_ratio"] = whole.ratio;
@@ -340,8 +360,9 @@ nlohmann::ordered_json summary_json(const std::vector<PairSummaries>& pairs, con
           {"equal_accuracy", equal_accuracy > 0 ? json(equal_accuracy) : json(nullptr)},
           {"method",
            {{"pairs",
-             "\"scenes\" and \"categories\" compare cga with traditional; each entry of \"pairs\" another pair "
-             "that ran (pga/traditional, pga/cga), the same way"},
+             "\"scenes\" and \"categories\" compare cga with traditional (the rotation as the scene writes it, "
+             "the matrix by default); each entry of \"pairs\" another pair that ran (cga/traditional-quaternion "
+             "on rigid-body scenes, pga/traditional, pga/cga, ...), the same way"},
             {"ratio",
              "time-weighted numerator/denominator (cga/traditional): the sum over a category's scenes of the mean "
              "numerator seconds per repeat over the sum of the mean denominator seconds; where trajectories parted, "

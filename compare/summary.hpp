@@ -26,14 +26,24 @@ struct BackendPair {
   std::string label() const { return std::string(numerator) + " / " + std::string(denominator); }
   friend bool operator==(const BackendPair&, const BackendPair&) = default;
 };
-// Every pair reported, in this order: each algebra against traditional, then
-// the two algebras against each other. cga/traditional, the first, is the
-// project's question and summary.json's top level.
-inline constexpr BackendPair kPairs[] = {{"cga", "traditional"}, {"pga", "traditional"}, {"pga", "cga"}};
+// Every pair reported, in this order: each algebra against traditional (as
+// the scene writes its rotation, the matrix unless it says otherwise), each
+// algebra against the traditional backend's other representation (the
+// quaternion, the rotor's algebraic twin, run beside it on rigid-body scenes:
+// compare/runner.hpp), then the two algebras against each other.
+// cga/traditional, the first, is the project's question and summary.json's
+// top level.
+inline constexpr BackendPair kPairs[] = {
+    {"cga", "traditional"}, {"cga", "traditional-quaternion"}, {"cga", "traditional-matrix"},
+    {"pga", "traditional"}, {"pga", "traditional-quaternion"}, {"pga", "traditional-matrix"},
+    {"pga", "cga"}};
+// What a backend stores a rotation as on `scene`: "matrix", "quaternion",
+// "rotor" or "motor"; "" for bullet.
+std::string_view representation(std::string_view backend, const core::Scene& scene);
 bool ran_both(const SceneResult& r, BackendPair p);
 // The pairs of kPairs both of whose backends ran in one of `results` at least.
 std::vector<BackendPair> pairs_present(std::span<const SceneResult> results);
-// The backends of `pairs`, each once, in the order they first appear there.
+// The backends of `pairs`, each once, in known_backends() order.
 std::vector<std::string_view> backends_of(std::span<const BackendPair> pairs);
 // Largest state_difference between the pair's samples (0 unless both ran).
 StateErrors pair_divergence(const SceneResult& r, BackendPair p);
@@ -101,6 +111,10 @@ struct SceneSummary {
   double divergence = 0, orientation_divergence = 0;  // m, rad: between the pair, largest over samples
   double tolerance_used = 0;                          // tolerance_used(r, tolerance.metres)
   bool bodies = false;
+  // What each side stores a rotation as (representation()), where the scene has bodies.
+  std::string_view numerator_form, denominator_form;
+  // Solver steps (accepted and rejected) of each side's first repeat.
+  std::uint64_t numerator_steps = 0, denominator_steps = 0;
   Trajectories trajectories = Trajectories::not_compared;
   std::string not_compared_why;  // set when trajectories == not_compared
   std::vector<StageTimes> stages;  // every stage either backend ran

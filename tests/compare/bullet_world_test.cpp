@@ -334,7 +334,9 @@ TEST(BulletWorld, RunnerRunsBulletWhereItCan) {
       "bodies": [{"name": "box", "shape": {"box": [1, 1, 1]}, "mass": 1, "position": [0, 0, 0]}])");
   const auto particles = scene(R"("duration": 0.1, "output": {"every": 0.1}, "effects": [{"type": "collisions"}],
       "particles": [{"name": "bob", "mass": 1, "position": [0, 0, 0]}])");
-  EXPECT_EQ(backends_for(free_flight, names), (std::vector<std::string>{"traditional", "cga", "pga"}));
+  // A rigid-body scene runs the traditional backend in both rotation representations.
+  EXPECT_EQ(backends_for(free_flight, names),
+            (std::vector<std::string>{"traditional", "traditional-quaternion", "cga", "pga"}));
   EXPECT_EQ(backends_for(colliding, names), (std::vector<std::string>{"traditional", "cga", "pga", "bullet"}));
   EXPECT_EQ(backends_for(particles, names), (std::vector<std::string>{"traditional", "cga", "pga"}));
   // Named exactly (the CLI's --backends), the list is run as given, Bullet included.

@@ -117,7 +117,7 @@ TEST(Cli, SeveralScenesGetOneFolderEachAndASummary) {
   EXPECT_NE(md.find("## cga / traditional by category and stage"), std::string::npos) << md;
   EXPECT_NE(md.find("| collisions | **all stages** | 1 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| particles (not evidence) | **all stages** | 2 |"), std::string::npos) << md;
-  EXPECT_NE(md.find("**Verdict, from these numbers:** collisions (1 scene): "), std::string::npos) << md;
+  EXPECT_NE(md.find("**Verdict, from these numbers:**\n\n- collisions (1 scene): "), std::string::npos) << md;
   EXPECT_NE(read_text(out / "report.html").find("<h2>cga / traditional by category and stage</h2>"),
             std::string::npos);
 
@@ -184,8 +184,9 @@ TEST(Cli, MistakesGetOneLineSayingWhatWasMeant) {
   one_line(gacompare("comapre " + kScene), "'comapre' is not a command (run, compare, check, sweep, merge, diff, list, "
                                            "collide or corpus); did you mean 'compare'?");
   one_line(gacompare("--quiet frobnicate"), "'frobnicate' is not a command");
-  one_line(gacompare("run " + kScene + " --backend cgaa"), "--backend: 'cgaa' is not a backend (traditional, cga, pga "
-                                                           "or bullet); did you mean 'cga'?");
+  one_line(gacompare("run " + kScene + " --backend cgaa"), "--backend: 'cgaa' is not a backend (traditional, "
+                                                           "traditional-matrix, traditional-quaternion, cga, pga or "
+                                                           "bullet); did you mean 'cga'?");
   one_line(gacompare("run " + kScene), "--backend is required");
   one_line(gacompare("compare " + kScene + " --repeat 0"), "--repeat: expected a whole number from 1 to 200, got 0");
   one_line(gacompare("compare " + kScene + " --repeat 99999999999999"), "got 99999999999999, above 200");

@@ -20,7 +20,9 @@ class Equivalence : public ::testing::TestWithParam<const char*> {};
 TEST_P(Equivalence, BackendsAgreeWithinTheSolverTolerance) {
   const auto scene = core::load_scene(std::string(GACOMPARE_DATA_DIR) + "/scenes/" + GetParam() + ".json");
   const SceneResult all = compare_scene(scene, backend_names(), 1);
-  ASSERT_EQ(all.backends.size(), 3u);  // traditional, cga, pga: Bullet runs collision scenes only
+  // traditional (the matrix), its quaternion twin, cga, pga: Bullet runs collision scenes only.
+  ASSERT_EQ(all.backends.size(), 4u);
+  EXPECT_EQ(all.backends[1].run.backend, "traditional-quaternion");
   for (const auto& b : all.backends) ASSERT_FALSE(b.run.error.has_value()) << *b.run.error;
   double spin = 0;
   for (const auto& b : scene.bodies) spin = std::max(spin, b.angular_velocity.norm());

@@ -235,6 +235,10 @@ TEST(Summary, PairsThatRan) {
   EXPECT_EQ(pairs_present(std::span(&three, 1)), (std::vector<BackendPair>{pga_trad}));
   const std::vector<SceneResult> both = {two, three};
   EXPECT_EQ(pairs_present(both), (std::vector<BackendPair>{kPairs[0], pga_trad}));  // pga and cga never met
-  EXPECT_EQ(backends_of(kPairs), (std::vector<std::string_view>{"traditional", "cga", "pga"}));
+  // In known_backends() order, each representation of the traditional backend beside it.
+  EXPECT_EQ(backends_of(kPairs), (std::vector<std::string_view>{"traditional", "traditional-matrix",
+                                                                 "traditional-quaternion", "cga", "pga"}));
+  const std::vector<SceneResult> twin = {ran({"traditional", "traditional-quaternion", "cga"})};
+  EXPECT_EQ(pairs_present(twin), (std::vector<BackendPair>{kPairs[0], {"cga", "traditional-quaternion"}}));
   EXPECT_EQ(pga_cga.label(), "pga / cga");
 }
