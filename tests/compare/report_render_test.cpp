@@ -1,7 +1,8 @@
 // report.html and replay.html rendered by a real browser: headless Chromium
 // (Debian's chromium) loads the pages a comparison wrote; the report's DOM must
 // hold the tables and the inline SVG figures and its screenshot must not be
-// blank; the replay's WebGL views must show the bodies at t = 0, change by the
+// blank; the overview of several scenes must put its forest plot and verdict
+// before its tables, and its tables must fit the page; the replay's WebGL views must show the bodies at t = 0, change by the
 // end, and be there for every backend.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -71,6 +72,83 @@ TEST(ReportRender, ChromiumShowsTablesAndFigures) {
   // three plotted figures take well over 50 kB (this page measures ~250 kB).
   const auto size = fs::file_size(dir / "shot.png");
   EXPECT_GT(size, 50'000u);
+  fs::remove_all(dir);
+}
+
+// The overview of several scenes answers first: the forest plot of the
+// ratios, drawn, and the verdict come before any table, and every table fits
+// the page's width at a common laptop width (1440 px) with no cell wrapped.
+// Measured in the browser's own layout by a probe page that holds the report
+// in a frame.
+TEST(ReportRender, OverviewAnswersFirstAndItsTablesFitThePage) {
+  ASSERT_EQ(std::system("command -v chromium > /dev/null"), 0)
+      << "chromium not found: scripts/install-deps.sh installs it (Debian package chromium)";
+  const fs::path dir = scratch("overview");
+  const std::string scenes = std::string(GACOMPARE_DATA_DIR) + "/scenes/";
+  ASSERT_EQ(std::system((std::string(GACOMPARE_BIN) + " compare " + scenes + "spinning_top.json " + scenes +
+                         "contact_row.json " + scenes + "kepler.json --repeat 5 --quiet --out " + (dir / "out").string() +
+                         " > /dev/null")
+                            .c_str()),
+            0);
+  std::ofstream(dir / "probe.html") << R"(<!DOCTYPE html><html><body style="margin:0"><pre id="probe">no answer</pre>
+<iframe id="report" src="out/report.html" width="1440" height="900" style="border:0"></iframe>
+<script>
+document.getElementById("report").addEventListener("load", function () {
+  var out = document.getElementById("probe");
+  try {
+    var doc = this.contentDocument, page = doc.documentElement.clientWidth;
+    var forest = doc.getElementById("forest"), tables = doc.querySelectorAll("table");
+    var svg = forest ? forest.querySelector("svg") : null;
+    var verdict = null;
+    doc.querySelectorAll("strong").forEach(function (s) { if (!verdict && s.textContent.indexOf("Verdict") === 0) verdict = s; });
+    var before = function (a, b) { return !!(a && b && (a.compareDocumentPosition(b) & Node.DOCUMENT_POSITION_FOLLOWING)); };
+    var widest = 0, tallest = 0, lowest = 1e9;
+    tables.forEach(function (t) {
+      widest = Math.max(widest, t.getBoundingClientRect().right);
+      t.querySelectorAll("td,th").forEach(function (c) {
+        var h = c.getBoundingClientRect().height;
+        tallest = Math.max(tallest, h);
+        lowest = Math.min(lowest, h);
+      });
+    });
+    out.textContent = JSON.stringify({
+      page: page, tables: tables.length, widest: widest, tallest_cell: tallest, lowest_cell: lowest,
+      forest: !!svg, forest_height: svg ? svg.getBoundingClientRect().height : 0,
+      forest_marks: svg ? svg.querySelectorAll("path, use").length : 0,
+      forest_first: before(forest, tables[0]), verdict_first: before(verdict, tables[0])
+    });
+  } catch (e) { out.textContent = "error: " + e; }
+});
+</script></body></html>
+)";
+  const fs::path dom_file = dir / "dom.html";
+  ASSERT_EQ(std::system((chromium(dir) + " --allow-file-access-from-files --window-size=1460,1000 --dump-dom file://" +
+                         fs::absolute(dir / "probe.html").string() + " > " + dom_file.string() + " 2>/dev/null")
+                            .c_str()),
+            0);
+  const std::string dom = slurp(dom_file);
+  const std::string tag = "<pre id=\"probe\">";
+  const auto open = dom.find(tag), close = dom.find("</pre>", open);
+  ASSERT_NE(open, std::string::npos) << dom.substr(0, 2000);
+  const std::string answer = dom.substr(open + tag.size(), close - open - tag.size());
+  ASSERT_EQ(answer.rfind("{", 0), 0u) << answer;
+  const auto j = nlohmann::json::parse(answer);
+  EXPECT_TRUE(j["forest"].get<bool>()) << j;
+  // Drawn, not an empty frame: a row per category and stage (a dozen here),
+  // each with its interval, point and scene dots, is well over 40 marks.
+  EXPECT_GT(j["forest_marks"].get<int>(), 40) << j;
+  EXPECT_GT(j["forest_height"].get<double>(), 200) << j;
+  EXPECT_TRUE(j["forest_first"].get<bool>()) << j;
+  EXPECT_TRUE(j["verdict_first"].get<bool>()) << j;
+  EXPECT_GE(j["tables"].get<int>(), 4) << j;  // times, energy, pairs, categories
+  EXPECT_LE(j["widest"].get<double>(), j["page"].get<double>()) << j;
+  // No cell wraps: every cell is one line high (a wrapped one is two).
+  EXPECT_LT(j["tallest_cell"].get<double>(), 1.5 * j["lowest_cell"].get<double>()) << j;
+  ASSERT_EQ(std::system((chromium(dir) + " --window-size=1440,2400 --screenshot=" + (dir / "shot.png").string() +
+                         " file://" + fs::absolute(dir / "out" / "report.html").string() + " > /dev/null 2>&1")
+                            .c_str()),
+            0);
+  EXPECT_GT(fs::file_size(dir / "shot.png"), 50'000u);  // not blank (measured: ~500 kB)
   fs::remove_all(dir);
 }
 
