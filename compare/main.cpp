@@ -11,6 +11,7 @@
 #include "compare/report.hpp"
 #include "compare/runner.hpp"
 #include "compare/suggest.hpp"
+#include "compare/summary.hpp"
 #include "compare/sweep.hpp"
 #include "compare/escape.hpp"
 #include "compare/stored.hpp"
@@ -84,8 +85,42 @@ compare::Progress progress_line(const std::string& scene, std::size_t k, std::si
   };
 }
 
+// The overview's work-precision diagrams: each rigid-body scene (bodies, no
+// collisions) swept in memory with Cash–Karp 4(5) at tolerances 1e-4 … 1e-10
+// through every backend and the quaternion twin, 3 timed repeats a cell,
+// written beside the scene's report as <scene>/work_precision/ (sweep.md,
+// sweep.html, the SVG). A scene whose sweep cannot run gets its reason in the
+// caption and on stderr, and the comparison goes on.
+std::vector<compare::Figure> rigid_work_precision(const std::vector<compare::SceneResult>& results,
+                                                  const fs::path& dir, bool quiet) {
+  std::vector<compare::Figure> figures;
+  compare::SweepSpec spec;
+  spec.solvers = {core::SolverMethod::cash_karp45};
+  spec.tol_from = 4, spec.tol_to = 10, spec.repeats = 3, spec.peer = false;
+  for (const auto& r : results) {
+    if (compare::category_of(r.scene) != compare::Category::rigid_bodies) continue;
+    const std::string name = compare::file_name_for(r.scene.name);
+    if (!quiet) std::cerr << "gacompare: " << r.scene.name << ": work-precision diagram\n";
+    try {
+      const core::Scene swept = compare::swept_scene(r.scene, spec);
+      const fs::path folder = dir / name / "work_precision";
+      compare::write_sweep_report(folder, swept, compare::run_units(swept, spec), spec);
+      const fs::path svg = folder / (name + "_work_precision.svg");
+      figures.push_back({fs::exists(svg) ? core::read_file(svg, "work-precision diagram") : "",
+                         compare::md_text(r.scene.name) + ": Cash–Karp 4(5) at tolerances 1e-4 to 1e-10 in every "
+                         "backend, the traditional one as matrix and as quaternion; error against a 1e-13 reference, "
+                         "time the median of 3 runs. Table: [" + compare::md_text(r.scene.name) +
+                             "/work_precision/sweep.md](" + name + "/work_precision/sweep.md)."});
+    } catch (const Error& e) {
+      std::cerr << "gacompare: " << r.scene.name << ": no work-precision diagram: " << e.what() << "\n";
+      figures.push_back({"", compare::md_text(r.scene.name) + ": no work-precision diagram: " + compare::md_text(e.what())});
+    }
+  }
+  return figures;
+}
+
 int run_and_report(const std::vector<core::Compiled>& scenes, const std::vector<std::string>& backends,
-                   compare::Selection selection, int repeats, fs::path out, bool quiet) {
+                   compare::Selection selection, int repeats, fs::path out, bool quiet, bool work_precision = false) {
   const bool claimed = out.empty();
   if (claimed) out = default_out(scenes.size() == 1 ? scenes.front().scene.name : "compare");
   compare::StagedFolder folder(out, claimed);  // before any work: a bad --out is exit 2 now, not after the runs
@@ -102,7 +137,9 @@ int run_and_report(const std::vector<core::Compiled>& scenes, const std::vector<
         failed = true;
       }
   }
-  compare::write_reports(folder.path(), results, compare::finished(machine), repeats);
+  std::vector<compare::Figure> figures;
+  if (work_precision && results.size() > 1) figures = rigid_work_precision(results, folder.path(), quiet);
+  compare::write_reports(folder.path(), results, compare::finished(machine), repeats, 0, figures);
   folder.commit();
   std::cout << out.string() << "\n";
   return failed ? 1 : 0;
@@ -496,6 +533,7 @@ int main(int argc, char** argv) {
   std::string cmp_out;
   int cmp_repeat = 5;
   double cmp_accuracy = 0;
+  bool cmp_no_work_precision = false;
   auto* cmp = app.add_subcommand("compare", "run scenes through every backend and compare");
   cmp->add_option("scenes", cmp_scenes, "scene files (JSON)")->required();
   cmp->add_option("--out", cmp_out, "report folder (default reports/<scene or compare>-<date>)")->default_str("");
@@ -511,6 +549,9 @@ int main(int argc, char** argv) {
                                ->delimiter(',')
                                ->allow_extra_args(false)
                                ->check(backend_check);
+  cmp->add_flag("--no-work-precision", cmp_no_work_precision,
+                "leave out the overview's work-precision diagrams of the rigid-body scenes (a small sweep of each: "
+                "Cash-Karp at 1e-4 to 1e-10, 3 repeats)");
   cmp->add_option("--accuracy", cmp_accuracy,
                   "time at equal accuracy: each backend at the tolerance (or step) where its final error against a "
                   "1e-14 reference is <= E (rad for bodies without particles, m otherwise); cached in DIR/accuracy.json")
@@ -625,7 +666,7 @@ int main(int argc, char** argv) {
       return run_and_report(load_all(cmp_scenes), cmp_backends,
                             cmp_backends_opt->count() > 0 ? compare::Selection::exactly
                                                           : compare::Selection::where_supported,
-                            cmp_repeat, cmp_out, quiet);
+                            cmp_repeat, cmp_out, quiet, !cmp_no_work_precision);
     if (*chk) {
       std::optional<double> max_time_ratio;
       if (chk_max_time_ratio > 0) max_time_ratio = chk_max_time_ratio;

@@ -120,6 +120,20 @@ std::string run_gnuplot(const std::string& script, const std::string& title) {
 
 }  // namespace
 
+std::string backend_colour(std::string_view b) {
+  if (b == "traditional-quaternion") return "#17becf";
+  if (b.starts_with("traditional")) return "#1f77b4";
+  if (b == "cga") return "#d62728";
+  if (b == "pga") return "#2ca02c";
+  if (b == "bullet") return "#9467bd";
+  return "#7f7f7f";
+}
+
+int method_marker(std::size_t k) {
+  constexpr int kMarkers[] = {7, 5, 9, 13, 11, 15, 4, 6, 8, 12, 10, 14, 1, 2, 3};
+  return kMarkers[k % std::size(kMarkers)];
+}
+
 std::string render_svg(const ForestPlot& plot) {
   if (plot.rows.empty()) throw run_error("plot '" + plot.title + "': a forest plot needs a row");
   std::ostringstream script;
@@ -156,10 +170,15 @@ std::string render_svg(const ForestPlot& plot) {
          << ":-0.5]\nset grid xtics\nset key below\nset format x '%.2g'\n"
          << "set arrow from 1, graph 0 to 1, graph 1 nohead dt 2 lc rgb '#555555'\nset xtics (";
   // Ticks a reader can read off a narrow log range (gnuplot's own fall on decades only).
+  // Over a wide range the fine ticks would overlap: coarse ones then.
+  const bool wide = hi / lo > 3;
   bool first_tick = true;
   for (const double t : {0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.5, 2.0, 3.0,
-                         5.0, 10.0, 20.0, 50.0, 100.0})
-    if (t >= lo / 1.15 && t <= hi * 1.15) script << (first_tick ? "" : ", ") << t, first_tick = false;
+                         5.0, 10.0, 20.0, 50.0, 100.0}) {
+    const bool coarse = t == 0.01 || t == 0.02 || t == 0.05 || t == 0.1 || t == 0.2 || t == 0.5 || t == 1.0 ||
+                        t == 2.0 || t == 5.0 || t == 10.0 || t == 20.0 || t == 50.0 || t == 100.0;
+    if ((coarse || !wide) && t >= lo / 1.15 && t <= hi * 1.15) script << (first_tick ? "" : ", ") << t, first_tick = false;
+  }
   script << ")\nset ytics (";
   for (std::size_t i = 0; i < plot.rows.size(); ++i)
     script << (i ? ", " : "") << quoted(plot.rows[i].label) << " " << i;
@@ -228,11 +247,19 @@ std::string render_svg(const Plot& plot) {
         script << ", " << data << " using ($1+" << shift << "):2:3:4 with yerrorbars lc rgb 'black' pt 0 ps 0 lw 1 notitle";
       continue;
     }
+    const std::string colour = s.colour.empty() ? "" : " lc rgb " + quoted(s.colour);
+    const std::string title = s.in_key ? " title " + quoted(s.title) + " noenhanced" : " notitle";
+    if (s.key_only) {  // a legend line: what a colour or a marker means
+      script << (i ? ", " : "") << "keyentry with " << (s.marker ? (s.colour.empty() ? "points" : "linespoints") : "lines")
+             << colour << (s.colour.empty() ? " lc rgb 'black'" : "") << (s.marker ? " pt " + std::to_string(s.marker) : "")
+             << " lw 2" << title;
+      continue;
+    }
     // Markers only where points are few enough to read; a time series is a line.
     const bool markers = s.x.size() <= 60;
-    script << (i ? ", " : "") << data << " using 1:2 with " << (markers ? "linespoints" : "lines") << " title "
-           << quoted(s.title) << " noenhanced"
-           << (s.highlight ? " lw 3 pt 7 ps 1.2" : markers ? " lw 1 pt " + std::to_string(1 + i % 12) : " lw 2")
+    const int pt = s.marker ? s.marker : 1 + static_cast<int>(i % 12);
+    script << (i ? ", " : "") << data << " using 1:2 with " << (markers ? "linespoints" : "lines") << title << colour
+           << (s.highlight ? " lw 3 pt 7 ps 1.2" : markers ? " lw 1.5 pt " + std::to_string(pt) : " lw 2")
            << (s.dashed ? " dt 2" : "");
   }
   script << "\n";

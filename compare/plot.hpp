@@ -5,6 +5,7 @@
 // time) and report figures.
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace gacompare::compare {
@@ -17,6 +18,16 @@ struct Series {
   // empty: none.
   std::vector<double> lo{}, hi{};  // (default initialisers: Series{title, x, y, highlight} stays warning-free)
   bool dashed = false;     // drawn dashed, over a line it coincides with
+  // Encodings a reader can decode when many series share a plot: a colour
+  // (gnuplot's rgb '#rrggbb', "" = gnuplot's own sequence) and a marker
+  // (gnuplot point type, 0 = its own), and whether the series is named in the
+  // key (false when the key explains colour and marker instead).
+  std::string colour{};
+  int marker = 0;
+  bool in_key = true;
+  // A key entry only: no data, drawn as a line of `colour` and/or a point of
+  // `marker` beside `title` (gnuplot's keyentry).
+  bool key_only = false;
 };
 
 struct Plot {
@@ -44,6 +55,13 @@ struct ForestPlot {
   std::vector<ForestRow> rows;
 };
 std::string render_svg(const ForestPlot& plot);
+
+// One colour per backend in every figure, so a reader learns it once: the
+// traditional backend blue (its quaternion form cyan), cga red, pga green,
+// bullet purple, a peer library (Boost.Odeint) grey.
+std::string backend_colour(std::string_view backend);
+// Filled markers first (circle, square, triangle, diamond, ...): the k-th method's.
+int method_marker(std::size_t k);
 
 // Renders `plot` as SVG text. Throws run_error naming the cause when gnuplot is
 // missing or fails: never a silent missing figure.

@@ -613,7 +613,7 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
 }
 
 std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
-                                double equal_accuracy) {
+                                double equal_accuracy, const std::vector<Figure>& work_precision) {
   const std::vector<PairSummaries> pairs = summarise(results, equal_accuracy > 0);
   const SummaryParts p = summary_parts(results, pairs, machine, repeats);
   std::string figures;
@@ -622,12 +622,15 @@ std::string summary_report_html(const std::vector<SceneResult>& results, const M
                "<figcaption>Each row: a ratio of times over a category's scenes, weighted by time, with its 95% "
                "bootstrap interval over paired repeats; grey circles: the single scenes behind it. Left of the dashed "
                "line the first backend named is faster. Stages are shown for the first pair.</figcaption></figure>\n";
+  for (const Figure& w : work_precision)
+    figures += "<figure>" + inline_svg(w.svg) + "<figcaption>" + markdown_to_html(w.caption) + "</figcaption></figure>\n";
   return html_page("gacompare", markdown_to_html(p.head) + figures + markdown_to_html(p.answer) + markdown_to_html(p.tables),
                    "overview");
 }
 
 void write_reports(const std::filesystem::path& dir, const std::vector<SceneResult>& results,
-                   const MachineInfo& machine, int repeats, double equal_accuracy) {
+                   const MachineInfo& machine, int repeats, double equal_accuracy,
+                   const std::vector<Figure>& work_precision) {
   auto write_scene = [&](const std::filesystem::path& d, const SceneResult& r) {
     write_file_atomically(d / "results.json", results_json(r, machine, repeats).dump(1) + "\n");
     write_file_atomically(d / "stages.csv", stage_csv({r}));
@@ -645,7 +648,7 @@ void write_reports(const std::filesystem::path& dir, const std::vector<SceneResu
   write_file_atomically(dir / "summary.json",
                         summary_json(summarise(results, equal_accuracy > 0), machine, repeats, equal_accuracy).dump(1) + "\n");
   write_file_atomically(dir / "report.md", summary_report_md(results, machine, repeats, equal_accuracy));
-  write_file_atomically(dir / "report.html", summary_report_html(results, machine, repeats, equal_accuracy));
+  write_file_atomically(dir / "report.html", summary_report_html(results, machine, repeats, equal_accuracy, work_precision));
 }
 
 }  // namespace gacompare::compare

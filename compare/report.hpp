@@ -29,8 +29,13 @@ std::string summary_report_md(const std::vector<SceneResult>& results, const Mac
 // The summary's page answers first: the forest plot of the ratios, the
 // verdict, then the tables.
 std::string scene_report_html(const SceneResult& r, const MachineInfo& machine, int repeats);
+// `work_precision`: figures (inline SVG and a caption) drawn before the
+// verdict, after the forest plot: the rigid scenes' work-precision diagrams.
+struct Figure {
+  std::string svg, caption;
+};
 std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
-                                double equal_accuracy = 0);
+                                double equal_accuracy = 0, const std::vector<Figure>& work_precision = {});
 // The pieces: markdown (headings, paragraphs, pipe tables) as HTML, and a
 // self-contained page around a body.
 std::string markdown_to_html(const std::string& md);
@@ -46,7 +51,8 @@ std::string inline_svg(const std::string& svg);
 // dir/stages.csv summarising them. Every file is written atomically.
 // `equal_accuracy`: as for summary_report_md (and summary.json).
 void write_reports(const std::filesystem::path& dir, const std::vector<SceneResult>& results,
-                   const MachineInfo& machine, int repeats, double equal_accuracy = 0);
+                   const MachineInfo& machine, int repeats, double equal_accuracy = 0,
+                   const std::vector<Figure>& work_precision = {});
 
 // A time in the unit that suits it: "812 ns", "3.41 µs", "12.5 ms", "2.04 s".
 std::string format_seconds(double s);

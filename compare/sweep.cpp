@@ -340,6 +340,14 @@ bool cell_is_current(const SweepCell& cell, const nlohmann::json& key) {
   return cell.format == kSweepCellFormat && cell.key == nlohmann::json(key);
 }
 
+std::vector<SweepCell> run_units(const core::Scene& swept, const SweepSpec& spec) {
+  const core::Run ref = sweep_reference(swept);
+  std::vector<SweepCell> out;
+  for (const Unit& u : sweep_units(spec, swept))
+    out.push_back(parse_cell(run_unit(u, swept, ref, spec).dump(), "(in memory)", u.id));
+  return out;
+}
+
 void write_sweep_report(const std::filesystem::path& dir, const core::Scene& scene,
                         const std::vector<SweepCell>& units, const SweepSpec& spec) {
   const Measure x = spec.error.value_or(default_error(scene));
@@ -435,27 +443,52 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
   // time, both logarithmic, a line with markers per solver and backend.
   Plot p{scene.name + ": what accuracy costs in time", words + " error at the end (" + unit + ")", "time (s), median",
          true, true, {}, {}};
+  // Colour by backend (and representation), marker by method; the key says
+  // what each colour and each marker means, not every combination of them.
   std::vector<std::pair<double, double>> front;
+  std::vector<std::string> methods, backends;
+  for (const auto& r : rows) {
+    if (!usable(r)) continue;
+    if (std::find(methods.begin(), methods.end(), r.solver) == methods.end()) methods.push_back(r.solver);
+    if (std::find(backends.begin(), backends.end(), r.backend) == backends.end()) backends.push_back(r.backend);
+  }
   for (const auto& r : rows) {
     const std::string title = r.solver + " (" + r.backend + ")";
     auto it = std::find_if(p.series.begin(), p.series.end(), [&](const Series& s) { return s.title == title; });
-    if (it == p.series.end()) it = p.series.insert(p.series.end(), Series{title, {}, {}, false});
+    if (it == p.series.end()) {
+      Series s{title, {}, {}, false};
+      s.colour = backend_colour(r.backend);
+      s.marker = method_marker(static_cast<std::size_t>(std::find(methods.begin(), methods.end(), r.solver) - methods.begin()));
+      s.in_key = false;
+      it = p.series.insert(p.series.end(), s);
+    }
     if (!usable(r)) continue;
     it->x.push_back(r.error);
     it->y.push_back(r.time);
     if (pareto(r)) front.emplace_back(r.error, r.time);
   }
   std::erase_if(p.series, [](const Series& s) { return s.x.empty(); });
+  for (const auto& b : backends) {
+    Series k{b, {}, {}, false};
+    k.colour = backend_colour(b), k.key_only = true;
+    p.series.push_back(k);
+  }
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    Series k{methods[m], {}, {}, false};
+    k.marker = method_marker(m), k.key_only = true;
+    p.series.push_back(k);
+  }
   std::sort(front.begin(), front.end());
   if (!front.empty()) {
     Series f{"Pareto front", {}, {}, true};
+    f.colour = "#000000";  // not a backend's colour
     for (const auto& [e, t] : front) f.x.push_back(e), f.y.push_back(t);
     p.series.push_back(f);
   }
   std::string figure;
   std::error_code gone;
   std::filesystem::remove(dir / (file_name_for(scene.name) + "_work_precision.svg"), gone);  // a stale one, drawn by another --error
-  if (!p.series.empty()) {
+  if (std::any_of(p.series.begin(), p.series.end(), [](const Series& s) { return !s.key_only; })) {
     figure = render_svg(p);
     write_file_atomically(dir / (file_name_for(scene.name) + "_work_precision.svg"), figure);
     figure = "<figure>" + figure.substr(std::min(figure.size(), figure.find("<svg"))) + "</figure>\n";

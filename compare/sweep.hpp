@@ -92,6 +92,12 @@ core::Run sweep_reference(const core::Scene& swept);
 nlohmann::ordered_json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& reference,
                                 const SweepSpec& spec);
 
+// Every unit of `spec` on a swept scene (swept_scene), run here and kept in
+// memory rather than in a cells folder: the overview report's work-precision
+// diagrams of its rigid scenes (compare/report.hpp). Throws run_error when the
+// reference run fails.
+std::vector<SweepCell> run_units(const core::Scene& swept, const SweepSpec& spec);
+
 // Writes sweep.md, sweep.csv, <scene>_work_precision.svg and sweep.html (the table
 // and the diagram on one page) into `dir` from the units' records (in unit order).
 // sweep.md ends with the time at equal accuracy: per solver, each backend's

@@ -103,6 +103,29 @@ TEST(Cli, CompareWritesResultsAndReportForEveryBackend) {
     EXPECT_NE(e.path().filename().string().front(), '.') << e.path();
 }
 
+// The overview draws each rigid-body scene's work-precision diagram (a small
+// sweep, its table beside the scene's report) and none of a scene of another
+// category; --no-work-precision leaves them out.
+TEST(Cli, TheOverviewDrawsTheRigidScenesWorkPrecision) {
+  const fs::path out = fresh_dir("wp"), bare = fresh_dir("no_wp");
+  const std::string data = std::string(GACOMPARE_DATA_DIR) + "/scenes/";
+  const std::string scenes = data + "tumbling_box.json " + kScene;
+  Result r = gacompare("compare " + scenes + " --repeat 1 --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "tumbling_box" / "work_precision" / "sweep.md"));
+  EXPECT_FALSE(fs::exists(out / "projectile_linear_drag" / "work_precision"));
+  const std::string html = read_text(out / "report.html");
+  EXPECT_NE(html.find("tumbling_box: what accuracy costs in time"), std::string::npos);
+  EXPECT_LT(html.find("id=\"forest\""), html.find("<table"));  // the answer before the tables
+  const std::string sweep = read_text(out / "tumbling_box" / "work_precision" / "sweep.md");
+  for (const char* b : {"| traditional |", "| traditional-quaternion |", "| cga |", "| pga |"})
+    EXPECT_NE(sweep.find(b), std::string::npos) << b;
+  r = gacompare("compare " + scenes + " --repeat 1 --quiet --no-work-precision --out " + bare.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(bare / "tumbling_box" / "work_precision"));
+  EXPECT_EQ(read_text(bare / "report.html").find("what accuracy costs in time"), std::string::npos);
+}
+
 TEST(Cli, SeveralScenesGetOneFolderEachAndASummary) {
   const fs::path out = fresh_dir("many");
   const std::string data = std::string(GACOMPARE_DATA_DIR) + "/scenes/";
