@@ -21,6 +21,7 @@ packages=(
   clang libclang-rt-dev    # the libFuzzer targets (scripts/fuzz.sh): clang with its fuzzer and sanitizer runtimes
   chromium                 # the harness test renders report.html headless
   libjs-three              # three.js (non-module build), inlined into replay.html
+  slurmctld slurmd slurm-client munge  # the Slurm test: sweeps as a job array on a single-node Slurm it starts
 )
 missing=()
 for p in "${packages[@]}"; do
