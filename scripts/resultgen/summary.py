@@ -15,11 +15,25 @@ def _demote(markdown):
 
 
 def pairs(summary):
-    """Each pair summary.json compares, as (label, block with "scenes" and
-    "categories"): cga / traditional at its top level, then each of "pairs"."""
-    yield "cga / traditional", summary
+    """Each pair summary.json compares, as (numerator, denominator, block with
+    "scenes" and "categories"): cga / traditional at its top level, then each
+    of "pairs"."""
+    yield "cga", "traditional", summary
     for p in summary.get("pairs", []):
-        yield f"{p['numerator']} / {p['denominator']}", p
+        yield p["numerator"], p["denominator"], p
+
+
+def label(num, den, block, category):
+    """'cga (rotor) / traditional (matrix)' where every compared scene of the
+    category stores rotations alike on each side: a headline on bodies names
+    the representations it compares. The bare pair otherwise."""
+    forms = {(s["rotation"][num], s["rotation"][den]) for s in block["scenes"]
+             if s["category"] == category and "rotation" in s and "not_compared" not in s}
+    if len(forms) == 1:
+        (a, b), = forms
+        # traditional-quaternion is the traditional backend, named by its form
+        return f"{num.split('-')[0]} ({a}) / {den.split('-')[0]} ({b})"
+    return f"{num} / {den}"
 
 
 def overall(block, category):
@@ -57,10 +71,10 @@ def headline(summary):
     rows = []
     for category, finding in (("rigid bodies", "Rigid bodies without contact: whole run, {} at equal tolerance"),
                               ("collisions", "Scenes with collisions: whole run, {}")):
-        for label, block in pairs(summary):
+        for num, den, block in pairs(summary):
             value = overall(block, category)
             if value:
-                rows.append({"finding": finding.format(label), "value": value, "anchor": ""})
+                rows.append({"finding": finding.format(label(num, den, block, category)), "value": value, "anchor": ""})
     same = [s["name"] for s in summary["scenes"] if s["trajectories"] == "identical"]
     parts = [s for s in summary["scenes"] if s["category"] == "particles"]
     if parts:
