@@ -139,18 +139,38 @@ constexpr void apply(std::array<double, NR>& r, const std::array<double, NA>& a,
   }
 }
 
+// Every term of a product table, unrolled.
+template <class T, std::size_t NR, std::size_t NA, std::size_t NB, std::size_t... K>
+[[gnu::always_inline]] constexpr void apply_all(std::array<double, NR>& r, const std::array<double, NA>& a,
+                                                const std::array<double, NB>& b, std::index_sequence<K...>) {
+  (apply<T::terms[K]>(r, a, b), ...);
+}
+template <class T, class MA, class MB>
+[[gnu::always_inline]] constexpr auto product_inline(const MA& a, const MB& b) {
+  typename T::RR r;
+  apply_all<T>(r.c, a.c, b.c, std::make_index_sequence<T::n>{});
+  return r;
+}
+template <class T, class MA, class MB>
+constexpr auto product_call(const MA& a, const MB& b) {
+  return product_inline<T>(a, b);
+}
+// Up to this many terms a product is written where it is used. GCC's
+// heuristics made small products calls (a dual sphere's 5-term inner product
+// was 25-28% of the cga broadphase's time in bench/broadphase_bench.cpp, the
+// call costing more than the arithmetic); larger ones (a full geometric
+// product's hundreds of terms) are left to them.
+inline constexpr int kInlineTerms = 64;
+
 }  // namespace detail
 
 // The product P of a and b, keeping only the blades in Keep: sandwiches use Keep
 // to skip terms that cancel identically, so no work is spent computing zeros.
 template <Product P, BladeSet Keep = ~BladeSet{0}, class A, BladeSet SA, BladeSet SB>
-constexpr auto product(const Multivector<A, SA>& a, const Multivector<A, SB>& b) {
+[[gnu::always_inline]] constexpr auto product(const Multivector<A, SA>& a, const Multivector<A, SB>& b) {
   using T = detail::Table<A, P, SA, SB, Keep>;
-  typename T::RR r;
-  [&]<std::size_t... K>(std::index_sequence<K...>) {
-    (detail::apply<T::terms[K]>(r.c, a.c, b.c), ...);
-  }(std::make_index_sequence<T::n>{});
-  return r;
+  if constexpr (T::n <= detail::kInlineTerms) return detail::product_inline<T>(a, b);
+  else return detail::product_call<T>(a, b);
 }
 
 template <class A, BladeSet SA, BladeSet SB>

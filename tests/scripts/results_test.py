@@ -106,8 +106,19 @@ class SummaryPairs(unittest.TestCase):
     }
 
     def test_every_pair_in_order(self):
-        self.assertEqual([label for label, _ in summary.pairs(self.SUMMARY)],
+        self.assertEqual([f"{n} / {d}" for n, d, _ in summary.pairs(self.SUMMARY)],
                          ["cga / traditional", "pga / traditional", "pga / cga"])
+
+    def test_a_headline_on_bodies_names_the_representations(self):
+        """Scenes that carry "rotation" name each side's form; the quaternion
+        twin reads as the traditional backend with its form."""
+        box = {"name": "box", "category": "rigid bodies", "trajectories": "within tolerance",
+               "rotation": {"traditional-quaternion": "quaternion", "cga": "rotor"}}
+        block = {"scenes": [box], "categories": {"rigid bodies": _category(0.96, 0.93, 1.01, "within noise", ["box"])}}
+        self.assertEqual(summary.label("cga", "traditional-quaternion", block, "rigid bodies"),
+                         "cga (rotor) / traditional (quaternion)")
+        self.assertEqual(summary.label("cga", "traditional-quaternion", block, "collisions"),
+                         "cga / traditional-quaternion")
 
     def test_a_headline_row_per_pair_and_category(self):
         rows = summary.headline(self.SUMMARY)
