@@ -269,6 +269,18 @@ inline int order(GroupMethod m) {
   return 0;
 }
 
+// exp-and-compose pairs a torque-free step makes on the rotation (none for the
+// flat RK4): what its cost and its rounding scale with.
+inline int compositions_per_step(GroupMethod m) {
+  switch (m) {
+    case GroupMethod::rk4_flat: return 0;
+    case GroupMethod::rkmk4: case GroupMethod::rkmk5: return 1;
+    case GroupMethod::crouch_grossman3: return 3;
+    case GroupMethod::splitting: return 5;
+  }
+  return 0;
+}
+
 // One step of h from (t, y). The splitting takes no torque (it throws).
 template <RotationGroup G>
 State<G> step(GroupMethod m, const FreeBody& body, double t, const State<G>& y, double h) {
