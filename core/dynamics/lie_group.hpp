@@ -96,6 +96,23 @@ inline double energy(const FreeBody& body, const Eigen::Vector3d& pi) {
 template <RotationGroup G>
 Eigen::Vector3d world_momentum(const State<G>& y) { return G::rotate(y.rotation, y.momentum); }
 
+// The period of Euler's free equations for a body with distinct moments
+// (Landau & Lifshitz §37): with I_a > I_b > I_c, 2E = Π·ω and L² = |Π|²,
+//   T = 4 K(k) √(I_a I_b I_c / ((I_a − I_b)(L² − 2E I_c))),
+//   k² = (I_b − I_c)(2E I_a − L²) / ((I_a − I_b)(L² − 2E I_c))   when L² > 2E I_b,
+// the roles of I_a and I_c exchanged when L² < 2E I_b. The time between flips
+// of the Dzhanibekov body.
+inline double free_period(const Eigen::Vector3d& inertia, const Eigen::Vector3d& pi) {
+  Eigen::Vector3d sorted = inertia;
+  std::sort(sorted.data(), sorted.data() + 3, std::greater<>());
+  const double ia = sorted[0], ib = sorted[1], ic = sorted[2];
+  const double l2 = pi.squaredNorm(), e2 = pi.dot(pi.cwiseQuotient(inertia));
+  const bool near_a = l2 > e2 * ib;
+  const double big = near_a ? ia : ic, small = near_a ? ic : ia;
+  const double k2 = (ib - small) * (e2 * big - l2) / ((big - ib) * (l2 - e2 * small));
+  return 4 * std::comp_ellint_1(std::sqrt(k2)) * std::sqrt(ia * ib * ic / ((big - ib) * (l2 - e2 * small)));
+}
+
 namespace detail {
 
 struct Rates {

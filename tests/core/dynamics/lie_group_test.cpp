@@ -101,24 +101,15 @@ TEST(LieGroup, SplittingEnergyErrorStaysBoundedWhereRkmkDrifts) {
 // The Dzhanibekov flip of the rigid tests (tests/rigid_cases.hpp: spin 10
 // rad/s about the intermediate axis, a 0.01 rad/s nudge), by the adaptive
 // RKMK 5(4) at tolerance 1e-11: the time between upward zero crossings of Π₂
-// against the period of Euler's free equations, 4 K(k) √(…) (Landau & Lifshitz
-// §37). Crossings are
-// located to 1e-7 s by bisecting on Π₂, so a period is good to 2e-7 s, 5e-8 of
-// it; the bound is 1e-7 relative (7e-10 measured).
+// against the period of Euler's free equations (core::lie::free_period, Landau
+// & Lifshitz §37). Crossings are located to 1e-7 s by bisecting on Π₂, so a
+// period is good to 2e-7 s, 5e-8 of it; the bound is 1e-7 relative (7e-10
+// measured).
 TEST(LieGroup, AdaptiveRkmkFlipsAtTheEllipticPeriod) {
   const core::lie::FreeBody body{{(0.16 + 0.81) / 12, (0.01 + 0.81) / 12, (0.01 + 0.16) / 12}, {}};
   const Eigen::Vector3d w(0.0, 10.0, 0.01);
   const Eigen::Vector3d pi0 = body.inertia.cwiseProduct(w);
-  const double Imax = body.inertia.x(), Imid = body.inertia.y(), Imin = body.inertia.z();
-  const double L2 = pi0.squaredNorm(), E2 = pi0.dot(w);
-  double period;  // the two branches of Landau & Lifshitz §37, as in tests/rigid_cases.hpp
-  if (L2 > E2 * Imid) {
-    const double k2 = (Imid - Imin) * (E2 * Imax - L2) / ((Imax - Imid) * (L2 - E2 * Imin));
-    period = 4 * std::comp_ellint_1(std::sqrt(k2)) * std::sqrt(Imin * Imid * Imax / ((Imax - Imid) * (L2 - E2 * Imin)));
-  } else {
-    const double k2 = (Imax - Imid) * (L2 - E2 * Imin) / ((Imid - Imin) * (E2 * Imax - L2));
-    period = 4 * std::comp_ellint_1(std::sqrt(k2)) * std::sqrt(Imin * Imid * Imax / ((Imid - Imin) * (E2 * Imax - L2)));
-  }
+  const double period = core::lie::free_period(body.inertia, pi0);
 
   using G = cga::RotorGroup;
   core::lie::StepStats stats;
