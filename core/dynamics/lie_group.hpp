@@ -17,12 +17,13 @@
 // Methods (step() below):
 //   rk4_flat          classical RK4 on the representation's stored numbers
 //                     (Ṙ = R ω̂, q̇ = ½ q ω, Ṙ = −½ R Ω): leaves the group
-//   rkmk4, rkmk5      Runge–Kutta–Munthe-Kaas (Munthe-Kaas 1999; Iserles,
-//                     Munthe-Kaas, Nørsett & Zanna 2000, Acta Numerica §5.1) on
+//   rkmk4, rkmk5      Runge–Kutta–Munthe-Kaas (Munthe-Kaas 1999, Appl. Numer.
+//                     Math. 29; Iserles, Munthe-Kaas, Nørsett & Zanna 2000,
+//                     "Lie-group methods", Acta Numerica 9) on
 //                     the classical RK4 and on Dormand–Prince 5(4); rkmk45
 //                     integrates adaptively with the pair's error estimate
-//   crouch_grossman3  Crouch & Grossman 1993 order 3, the coefficients as in
-//                     Owren & Marthinsen 1999 (BIT 39) §4
+//   crouch_grossman3  Crouch & Grossman 1993 (J. Nonlinear Sci. 3), order 3,
+//                     the coefficients as Owren & Marthinsen 1999 (BIT 39) list them
 //   splitting         Dullweber, Leimkuhler & McLachlan 1997 (J. Chem. Phys.
 //                     107): the free-body Hamiltonian split into the three
 //                     axis terms Π_i²/(2 I_i), each flow an exact rotation about
@@ -33,8 +34,9 @@
 //   θ' = dexp⁻¹₋θ(ω) = ω + ½ θ × ω + (1/12) θ × (θ × ω) − (1/720) ad⁴ ...
 // (the Bernoulli series with the odd term's sign flipped, because the action is
 // on the right). An RKMK method of order p needs the series only through
-// ad^(p−2) (Iserles et al. 2000, §5.1: θ and ω commute to leading order, so
-// adᵏ_θ ω = O(h^(k+1))); B3 = 0, so the double commutator serves p = 4 and 5.
+// ad^(p−2) (Munthe-Kaas 1999; Iserles et al. 2000): θ and ω commute to
+// leading order, so adᵏ_θ ω = O(h^(k+1)); B3 = 0, so the double commutator
+// serves p = 4 and 5.
 //
 // Torque-free, ω does not depend on R: the stage rotations are then never
 // formed, and a step costs its final exp and compositions only. A later
@@ -50,6 +52,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string_view>
+#include <utility>
 
 namespace gacompare::core::lie {
 
