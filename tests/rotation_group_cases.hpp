@@ -81,10 +81,11 @@ TYPED_TEST_P(RotationGroupCases, EachMethodConvergesAtItsOrder) {
 // 10⁵ steps of 0.01 s (about 60 turns) without renormalising: the group
 // methods keep the stored rotation a rotation to rounding. The bound is 1e-13
 // per 10⁵ compositions, growing as their square root (independent roundings
-// add in quadrature): 1e-13 for RKMK's one composition a step, 1.7e-13 and
-// 2.2e-13 for Crouch–Grossman's three and the splitting's five, which the
-// matrix needs (1.4e-13 measured with both) and the motor with the splitting
-// (1.2e-13); the rest measure 4e-15 to 9e-14.
+// add in quadrature): 1e-13 for RKMK's one composition a step, 1.7e-13 for
+// Crouch–Grossman 3's three, 2.2e-13 for Crouch–Grossman 4's and the
+// splitting's five, which the matrix needs (1.4e-13 to 1.6e-13 measured with
+// those three) and the motor with the splitting (1.2e-13); the rest measure
+// 1e-15 to 9e-14.
 // Flat RK4 leaves the group by O(h⁵) a step, which the same bound catches.
 TYPED_TEST_P(RotationGroupCases, GroupMethodsStayOnTheGroupWithoutRenormalising) {
   using G = TypeParam;

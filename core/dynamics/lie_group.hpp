@@ -24,6 +24,7 @@
 //                     integrates adaptively with the pair's error estimate
 //   crouch_grossman3  Crouch & Grossman 1993 (J. Nonlinear Sci. 3), order 3,
 //                     the coefficients as Owren & Marthinsen 1999 (BIT 39) list them
+//   crouch_grossman4  Jackiewicz, Marthinsen & Owren 2000, order 4 in 5 stages
 //   splitting         Dullweber, Leimkuhler & McLachlan 1997 (J. Chem. Phys.
 //                     107): the free-body Hamiltonian split into the three
 //                     axis terms Π_i²/(2 I_i), each flow an exact rotation about
@@ -168,6 +169,20 @@ inline constexpr Tableau<7> kDormandPrince{
 inline constexpr Tableau<3> kCrouchGrossman3{{{{0, 0, 0}, {3.0 / 4, 0, 0}, {119.0 / 216, 17.0 / 108, 0}}},
                                              {13.0 / 51, -2.0 / 3, 24.0 / 17}, {0, 3.0 / 4, 17.0 / 24}, {}};
 
+// Jackiewicz, Marthinsen & Owren 2000 (Adv. Comput. Math. 13), Example 1: 5
+// stages, order 4 on a Lie group (the classical conditions and those of the
+// non-commuting exps). a54 is the row sum c5 − a51 − a52 − a53; some copies
+// print −1.1092979392113565, which breaks it by 1e-14.
+inline constexpr Tableau<5> kCrouchGrossman4{
+    {{{0, 0, 0, 0, 0},
+      {0.8177227988124852, 0, 0, 0, 0},
+      {0.3199876375476427, 0.0659864263556022, 0, 0, 0},
+      {0.9214417194464946, 0.4997857776773573, -1.0969984448371582, 0, 0},
+      {0.3552358559023322, 0.2390958372307326, 1.3918565724203246, -1.1092979392113465, 0}}},
+    {0.1370831520630755, -0.0183698531564020, 0.7397813985370780, -0.1907142565505889, 0.3322195591068374},
+    {0, 0.8177227988124852, 0.3859740639032449, 0.3242290522866937, 0.8768903263420429},
+    {}};
+
 // A step in the algebra: R ← R exp(θ), Π ← Π + ΔΠ.
 struct Increment {
   Eigen::Vector3d theta = Eigen::Vector3d::Zero(), momentum = Eigen::Vector3d::Zero();
@@ -266,22 +281,24 @@ void axis_flow(const FreeBody& body, int i, double s, State<G>& y) {
 
 }  // namespace detail
 
-enum class GroupMethod { rk4_flat, rkmk4, rkmk5, crouch_grossman3, splitting };
-inline constexpr std::array kGroupMethods{GroupMethod::rk4_flat, GroupMethod::rkmk4, GroupMethod::rkmk5,
-                                          GroupMethod::crouch_grossman3, GroupMethod::splitting};
+enum class GroupMethod { rk4_flat, rkmk4, rkmk5, crouch_grossman3, crouch_grossman4, splitting };
+inline constexpr std::array kGroupMethods{GroupMethod::rk4_flat,         GroupMethod::rkmk4,
+                                          GroupMethod::rkmk5,            GroupMethod::crouch_grossman3,
+                                          GroupMethod::crouch_grossman4, GroupMethod::splitting};
 inline std::string_view to_string(GroupMethod m) {
   switch (m) {
     case GroupMethod::rk4_flat: return "rk4 (flat)";
     case GroupMethod::rkmk4: return "rkmk4";
     case GroupMethod::rkmk5: return "rkmk5 (Dormand-Prince)";
     case GroupMethod::crouch_grossman3: return "crouch-grossman3";
+    case GroupMethod::crouch_grossman4: return "crouch-grossman4";
     case GroupMethod::splitting: return "splitting (DLM)";
   }
   return "?";
 }
 inline int order(GroupMethod m) {
   switch (m) {
-    case GroupMethod::rk4_flat: case GroupMethod::rkmk4: return 4;
+    case GroupMethod::rk4_flat: case GroupMethod::rkmk4: case GroupMethod::crouch_grossman4: return 4;
     case GroupMethod::rkmk5: return 5;
     case GroupMethod::crouch_grossman3: return 3;
     case GroupMethod::splitting: return 2;
@@ -296,6 +313,7 @@ inline int compositions_per_step(GroupMethod m) {
     case GroupMethod::rk4_flat: return 0;
     case GroupMethod::rkmk4: case GroupMethod::rkmk5: return 1;
     case GroupMethod::crouch_grossman3: return 3;
+    case GroupMethod::crouch_grossman4: return 5;
     case GroupMethod::splitting: return 5;
   }
   return 0;
@@ -309,6 +327,7 @@ State<G> step(GroupMethod m, const FreeBody& body, double t, const State<G>& y, 
     case GroupMethod::rkmk4: return detail::advanced(y, detail::rkmk(detail::kRk4, body, t, y, h));
     case GroupMethod::rkmk5: return detail::advanced(y, detail::rkmk(detail::kDormandPrince, body, t, y, h));
     case GroupMethod::crouch_grossman3: return detail::crouch_grossman(detail::kCrouchGrossman3, body, t, y, h);
+    case GroupMethod::crouch_grossman4: return detail::crouch_grossman(detail::kCrouchGrossman4, body, t, y, h);
     case GroupMethod::splitting: {
       if (body.torque) throw std::invalid_argument("the splitting integrates the torque-free body only");
       State<G> out = y;

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -63,6 +64,43 @@ TEST(LieGroup, TheFourRepresentationsTakeTheSameSteps) {
       }
     }
   }
+}
+
+// The classical order conditions of the tableaus, through the eight trees of
+// order ≤ 4 (Hairer, Nørsett & Wanner I, §II.2): Σb = 1, Σbc = 1/2, Σbc² = 1/3,
+// Σbac = 1/6, Σbc³ = 1/4, Σbcac = 1/8, Σbac² = 1/12, Σbaac = 1/24, and that
+// each cᵢ is its row's sum. Necessary for the Lie-group orders, not sufficient
+// (Crouch–Grossman adds conditions of its own, which the convergence slopes
+// in tests/rotation_group_cases.hpp check). Sums of a few terms near 1 round
+// by a few ε (2.2e-16): the bound is 1e-15, which a coefficient off in its
+// 14th digit (Crouch–Grossman 4's misprinted a54) already breaks.
+template <int S>
+std::vector<double> order_defects(const core::lie::detail::Tableau<S>& t, int order) {
+  std::array<double, S> ac{}, ac2{}, aac{};
+  for (int i = 0; i < S; ++i)
+    for (int j = 0; j < i; ++j) ac[i] += t.a[i][j] * t.c[j], ac2[i] += t.a[i][j] * t.c[j] * t.c[j];
+  for (int i = 0; i < S; ++i)
+    for (int j = 0; j < i; ++j) aac[i] += t.a[i][j] * ac[j];
+  double trees[8] = {};
+  double row_sum = 0;
+  for (int i = 0; i < S; ++i) {
+    const double b = t.b[i], c = t.c[i];
+    trees[0] += b, trees[1] += b * c, trees[2] += b * c * c, trees[3] += b * ac[i];
+    trees[4] += b * c * c * c, trees[5] += b * c * ac[i], trees[6] += b * ac2[i], trees[7] += b * aac[i];
+    double r = -c;
+    for (int j = 0; j < i; ++j) r += t.a[i][j];
+    row_sum = std::max(row_sum, std::abs(r));
+  }
+  const double exact[8] = {1, 1.0 / 2, 1.0 / 3, 1.0 / 6, 1.0 / 4, 1.0 / 8, 1.0 / 12, 1.0 / 24};
+  std::vector<double> out{row_sum};
+  for (int k = 0; k < (order >= 4 ? 8 : order == 3 ? 4 : 2); ++k) out.push_back(trees[k] - exact[k]);
+  return out;
+}
+TEST(LieGroup, TableausMeetTheClassicalOrderConditions) {
+  for (const double d : order_defects(core::lie::detail::kRk4, 4)) EXPECT_LT(std::abs(d), 1e-15);
+  for (const double d : order_defects(core::lie::detail::kDormandPrince, 4)) EXPECT_LT(std::abs(d), 1e-15);
+  for (const double d : order_defects(core::lie::detail::kCrouchGrossman3, 3)) EXPECT_LT(std::abs(d), 1e-15);
+  for (const double d : order_defects(core::lie::detail::kCrouchGrossman4, 4)) EXPECT_LT(std::abs(d), 1e-15);
 }
 
 // The largest |E − E0| / E0 over the first and the last tenth of a run.
