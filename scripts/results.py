@@ -30,6 +30,7 @@ from resultgen.common import RESULTS, ROOT, Context, Provenance, fill, write_pag
 PAGES = {
     "summary": ("every bundled scene through every backend: the verdict per category and pair", summary.generate),
     "rigid-bodies": ("stability, steps and time at equal accuracy, what each rotation costs", dynamics.rigid_bodies),
+    "long-horizon": ("the Lie-group integrators over 10,000 periods, each rotation representation", dynamics.long_horizon),
     "particles": ("work-precision sweeps of the particle scenes", dynamics.particles),
     "collisions": ("detection per stage and per pair, the referees' agreement", collisions.generate),
     "contacts": ("degenerate contact cases, friction, the time-of-impact search", contacts.generate),

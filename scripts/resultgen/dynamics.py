@@ -1,6 +1,7 @@
 """The dynamics pages: particles (work-precision sweeps), rigid bodies
-(stability, steps and time at equal accuracy, what each representation costs)
-and meshes (mass properties, hulls)."""
+(stability, steps and time at equal accuracy, what each representation costs),
+the long horizon (the Lie-group integrators over thousands of periods) and
+meshes (mass properties, hulls)."""
 import json
 import os
 import re
@@ -92,6 +93,12 @@ def rigid_bodies(ctx):
     blocks = {"stability": strip_command_line(stability), "equal-steps": strip_command_line(equal_steps),
               "accuracy-tight": tight, "accuracy-loose": loose, "sweep": sweep, "costs": costs}
     return {"blocks": blocks, "headline": headline}
+
+
+def long_horizon(ctx):
+    periods = "1000" if ctx.quick else "10000"
+    table = ctx.run([ctx.tool("bench", "long_horizon"), "--periods", periods, "--repeat", "3", "--markdown"])
+    return {"blocks": {"tables": table}, "headline": []}
 
 
 def _hulls(ctx):
