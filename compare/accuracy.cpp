@@ -250,27 +250,40 @@ std::string accuracy_section_md(const AccuracyPlan& plan, const SceneResult& res
      << " and log-space bisection" << (plan.reused ? ", read from accuracy.json" : "")
      << ". This table is the headline; the tables below are these same runs, each backend at its own setting.\n\n"
      << "| backend | setting | " << words << " error (" << unit
-     << ") | steps | time median (min–max) | cga/traditional |\n|---|---|---:|---:|---:|---:|\n";
-  const BackendResult* trad = nullptr;
-  for (std::size_t k = 0; k < plan.backends.size() && k < result.backends.size(); ++k)
-    if (plan.backends[k].backend == "traditional") trad = &result.backends[k];
+     << ") | steps | time median (min–max) |";
+  // Each backend's time over that of each form of the traditional backend
+  // that ran (the matrix, and on a rigid-body scene the quaternion twin:
+  // compare/runner.hpp), over paired repeats.
+  std::vector<const BackendResult*> refs;
+  std::vector<std::string> ref_names;
+  for (const std::string_view name : {std::string_view("traditional"), kTraditionalRepresentations[0],
+                                      kTraditionalRepresentations[1]})
+    for (std::size_t k = 0; k < plan.backends.size() && k < result.backends.size(); ++k)
+      if (plan.backends[k].backend == name) refs.push_back(&result.backends[k]), ref_names.emplace_back(name);
+  for (const auto& name : ref_names) md << " time / " << name << " |";
+  md << "\n|---|---|---:|---:|---:|";
+  for (std::size_t k = 0; k < refs.size(); ++k) md << "---:|";
+  md << "\n";
   for (std::size_t k = 0; k < plan.backends.size() && k < result.backends.size(); ++k) {
     const auto& s = plan.backends[k];
     const auto& br = result.backends[k];
     const Spread t = spread(br.wall_seconds);
-    std::string ratio = "1";
-    if (s.backend != "traditional") {
-      ratio = "–";
-      if (trad && trad->wall_seconds.size() == br.wall_seconds.size()) {
+    md << "| " << s.backend << " | " << setting_text(plan.adaptive, setting_of(s.spec, plan.adaptive)) << " | "
+       << format_number("%.2e", s.error) << " | " << s.steps << " | " << format_number("%.3g", 1e3 * t.median) << " ms ("
+       << format_number("%.3g", 1e3 * t.min) << "–" << format_number("%.3g", 1e3 * t.max) << ") |";
+    for (const BackendResult* ref : refs) {
+      std::string ratio = "–";
+      if (ref == &br) {
+        ratio = "1";
+      } else if (ref->wall_seconds.size() == br.wall_seconds.size()) {
         std::vector<double> q;
-        for (std::size_t i = 0; i < br.wall_seconds.size(); ++i) q.push_back(br.wall_seconds[i] / trad->wall_seconds[i]);
+        for (std::size_t i = 0; i < br.wall_seconds.size(); ++i) q.push_back(br.wall_seconds[i] / ref->wall_seconds[i]);
         const Spread qs = spread(q);
         ratio = format_number("%.2f", qs.median) + " (" + format_number("%.2f", qs.min) + "–" + format_number("%.2f", qs.max) + ")";
       }
+      md << " " << ratio << " |";
     }
-    md << "| " << s.backend << " | " << setting_text(plan.adaptive, setting_of(s.spec, plan.adaptive)) << " | "
-       << format_number("%.2e", s.error) << " | " << s.steps << " | " << format_number("%.3g", 1e3 * t.median) << " ms ("
-       << format_number("%.3g", 1e3 * t.min) << "–" << format_number("%.3g", 1e3 * t.max) << ") | " << ratio << " |\n";
+    md << "\n";
   }
   return md.str();
 }

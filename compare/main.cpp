@@ -148,7 +148,7 @@ int run_and_report(const std::vector<core::Compiled>& scenes, const std::vector<
 // `compare --accuracy E`: each backend at the tolerance or step that reaches E
 // (compare/accuracy.hpp), the settings cached in DIR/accuracy.json, then timed.
 int run_at_accuracy(const std::vector<core::Compiled>& compiled, std::vector<std::string> backends, double target,
-                    int repeats, fs::path out, bool quiet) {
+                    int repeats, fs::path out, bool quiet, compare::Selection selection) {
   std::vector<core::Scene> scenes;  // each trial compiles its own model (compare/accuracy.cpp)
   for (const auto& c : compiled) scenes.push_back(c.scene);
   const bool claimed = out.empty();
@@ -169,7 +169,9 @@ int run_at_accuracy(const std::vector<core::Compiled>& compiled, std::vector<std
   bool failed = false;
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     const auto& scene = scenes[k];
-    plans.push_back(compare::find_equal_accuracy(scene, target, backends, staged / "accuracy.json", quiet));
+    // The default adds the quaternion twin on a rigid-body scene (compare/runner.hpp).
+    plans.push_back(compare::find_equal_accuracy(scene, target, compare::backends_for(scene, backends, selection),
+                                                 staged / "accuracy.json", quiet));
     if (!quiet)
       std::cerr << "gacompare: " << scene.name << ": settings " << (plans.back().reused ? "reused" : "found") << "\n";
     results.push_back(
@@ -661,7 +663,9 @@ int main(int argc, char** argv) {
     if (*run)
       return run_and_report(load_all({run_scene}), {run_backend}, compare::Selection::exactly, run_repeat, run_out, quiet);
     if (*cmp && cmp_accuracy > 0)
-      return run_at_accuracy(load_all(cmp_scenes), cmp_backends, cmp_accuracy, cmp_repeat, cmp_out, quiet);
+      return run_at_accuracy(load_all(cmp_scenes), cmp_backends, cmp_accuracy, cmp_repeat, cmp_out, quiet,
+                             cmp_backends_opt->count() > 0 ? compare::Selection::exactly
+                                                           : compare::Selection::where_supported);
     if (*cmp)
       return run_and_report(load_all(cmp_scenes), cmp_backends,
                             cmp_backends_opt->count() > 0 ? compare::Selection::exactly

@@ -47,9 +47,9 @@ def _accuracy(ctx, scenes, target, repeat):
     return re.sub(r"^(#+) ", lambda m: "##" + m.group(1) + " ", re.sub(r"^# .*\n+", "", text, count=1), flags=re.M)
 
 
-def _accuracy_ratio(markdown, scene, backend="cga"):
-    """`backend`/traditional of `scene` in accuracy.md: the last cell of its row
-    of the first table after the scene's own heading."""
+def _accuracy_ratio(markdown, scene, backend="cga", over="traditional"):
+    """`backend`/`over` of `scene` in accuracy.md: the cell of its row under
+    "time / OVER" in the first table after the scene's own heading."""
     m = re.search(r"^#+ " + re.escape(scene) + r"\s*$", markdown, flags=re.M)
     if not m:
         return None
@@ -57,8 +57,11 @@ def _accuracy_ratio(markdown, scene, backend="cga"):
         head = [h.lower() for h in t[0]]
         if "backend" in head:
             b = head.index("backend")
+            column = f"time / {over}"
+            if column not in head:
+                return None
             row = next((r for r in t[1:] if r[b] == backend), None)
-            return row[-1] if row else None
+            return row[head.index(column)] if row else None
     return None
 
 
@@ -81,10 +84,16 @@ def rigid_bodies(ctx):
     if d:
         headline.append({"finding": "The same on the Dzhanibekov flip, to 1e-3 rad", "value": d,
                          "anchor": "#time-at-equal-accuracy"})
-    m = _accuracy_ratio(tight, "spinning_top", "pga")
-    if m:
-        headline.append({"finding": "The same, pga (motor) / traditional (matrix): spinning top to 1e-6 rad",
-                         "value": m, "anchor": "#time-at-equal-accuracy"})
+    # The rotor's algebraic twin, the quaternion, beside the matrix: a fair
+    # headline names which traditional form it compares with.
+    for backend, form in (("cga", "rotor"), ("pga", "motor")):
+        for over, name in (("traditional", "matrix"), ("traditional-quaternion", "quaternion")):
+            if (backend, over) == ("cga", "traditional"):
+                continue  # the first row above
+            v = _accuracy_ratio(tight, "spinning_top", backend, over)
+            if v:
+                headline.append({"finding": f"The same, {backend} ({form}) / traditional ({name}): spinning top to 1e-6 rad",
+                                 "value": v, "anchor": "#time-at-equal-accuracy"})
     for op, label in (("derivative", "Rotor derivative / matrix derivative"),
                       ("vertices", "Moving a mesh: rotor sandwich / matrix product")):
         v = ratio_of(costs, op, "rotor")

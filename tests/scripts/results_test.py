@@ -74,13 +74,18 @@ class ContactFamilies(unittest.TestCase):
 
 
 class EqualAccuracy(unittest.TestCase):
-    MD = ("### spinning_top\n\n#### Time at equal accuracy\n\n| backend | setting | cga/traditional |\n|---|---|---:|\n"
-          "| traditional | tol 1e-9 | 1 |\n| cga | tol 8e-9 | 0.46 (0.40–0.50) |\n\n"
-          "### dzhanibekov\n\n#### Time at equal accuracy\n\n| backend | setting | cga/traditional |\n|---|---|---:|\n"
+    MD = ("### spinning_top\n\n#### Time at equal accuracy\n\n"
+          "| backend | setting | time / traditional | time / traditional-quaternion |\n|---|---|---:|---:|\n"
+          "| traditional | tol 1e-9 | 1 | 1.40 (1.3–1.5) |\n| traditional-quaternion | tol 8e-9 | 0.71 (0.7–0.8) | 1 |\n"
+          "| cga | tol 8e-9 | 0.46 (0.40–0.50) | 0.98 (0.95–1.02) |\n\n"
+          "### dzhanibekov\n\n#### Time at equal accuracy\n\n| backend | setting | time / traditional |\n|---|---|---:|\n"
           "| traditional | tol 3e-12 | 1 |\n| cga | tol 1e-11 | 0.68 (0.65–0.75) |\n")
 
     def test_each_scene_reads_its_own_table(self):
         self.assertEqual(dynamics._accuracy_ratio(self.MD, "spinning_top"), "0.46 (0.40–0.50)")
+        self.assertEqual(dynamics._accuracy_ratio(self.MD, "spinning_top", "cga", "traditional-quaternion"),
+                         "0.98 (0.95–1.02)")
+        self.assertIsNone(dynamics._accuracy_ratio(self.MD, "dzhanibekov", "cga", "traditional-quaternion"))
         self.assertEqual(dynamics._accuracy_ratio(self.MD, "dzhanibekov"), "0.68 (0.65–0.75)")
         self.assertIsNone(dynamics._accuracy_ratio(self.MD, "kepler"))
 
