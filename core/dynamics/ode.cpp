@@ -110,9 +110,11 @@ void OdeSolver::interpolate(double t, std::vector<double>& y) {
     for (std::size_t p = deg; p-- > 0;) wi = wi * theta + T.dense[i * deg + p];
     w[i] = wi * theta;
   }
+  // Σ_i b_i(θ) = θ: the same differences from k_1 as the step (pair_step).
   for (std::size_t m = 0; m < n; ++m) {
-    double acc = 0;
-    for (std::size_t i = 0; i < s; ++i) acc += w[i] * K_[i * n + m];
+    const double k1 = K_[m];
+    double acc = theta * k1;
+    for (std::size_t i = 1; i < s; ++i) acc += w[i] * (K_[i * n + m] - k1);
     y[m] = ys_[m] + hlast_ * acc;
   }
 }
