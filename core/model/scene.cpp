@@ -999,4 +999,6 @@ std::vector<CollisionCaseSpec> load_collision_cases(const std::filesystem::path&
   return parse_collision_cases(read_file(file, "collision case file", Links::follow), file);
 }
 
+std::span<const std::string_view> solver_method_names() { return kMethods; }
+
 }  // namespace gacompare::core

@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <variant>
 #include <vector>
@@ -24,6 +25,7 @@ enum class SolverMethod {
 };
 std::string_view to_string(SolverMethod m);
 std::optional<SolverMethod> solver_method_from_string(std::string_view s);
+std::span<const std::string_view> solver_method_names();  // every method's name, in the order above
 
 // How an adaptive step's error is measured against the tolerances:
 //   physical (default): per body, the errors of the position, the velocity, the
