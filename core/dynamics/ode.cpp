@@ -28,6 +28,7 @@ OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> vel
     case SolverMethod::vern8:
     case SolverMethod::vern9:
       tab_ = butcher_tableau(spec.method);
+      fsal_ = tab_->fsal();
       for (int i = 0; i < tab_->stages; ++i) e_.push_back(tab_->b[i] - tab_->bhat[i]);
       K_.resize(static_cast<std::size_t>(tab_->stages) * n);
       weights_.resize(static_cast<std::size_t>(tab_->stages));
@@ -81,9 +82,13 @@ void OdeSolver::stop(const std::string& why, double t, double h, const std::vect
 void OdeSolver::control(double ratio, double h, bool clipped) {
   const double k = tab_->embedded_order + 1;
   if (ratio <= 1.0) {
-    double grow = ratio == 0 ? 10.0 : 0.9 * std::pow(ratio, -0.7 / k) * std::pow(err_prev_, 0.4 / k);
+    // 0.9 E_n^(−0.7/k) E_{n−1}^(0.4/k) as one exp of logs (log E_{n−1} kept from
+    // the step before): two transcendental calls a step instead of two pow's.
+    static const double log_floor = std::log(1e-4);  // DOPRI5's facold floor
+    const double log_ratio = ratio > 0 ? std::log(ratio) : log_floor;
+    double grow = ratio == 0 ? 10.0 : 0.9 * std::exp((0.4 * log_err_prev_ - 0.7 * log_ratio) / k);
     grow = std::clamp(grow, 0.2, rejected_last_ ? 1.0 : 10.0);
-    err_prev_ = std::max(ratio, 1e-4);
+    log_err_prev_ = std::max(log_ratio, log_floor);
     rejected_last_ = false;
     h_ = clipped ? std::max(h_, h * grow) : h * grow;
     return;

@@ -141,9 +141,10 @@ class OdeSolver {
   // given_ at t_given_: what the caller was handed, to tell whether it changed y.
   enum class Changes { unknown, never, yes };  // what after_step has done to states
   const ButcherTableau* tab_ = nullptr;
+  bool fsal_ = false;  // tab_->fsal(), once
   std::vector<double> e_, K_, weights_, ys_, yi_, given_;
   double t0_ = 0, hlast_ = 0, ti_ = 0, t_given_ = NAN;
-  double err_prev_ = 1e-4;    // the PI controller's memory: the last accepted step's ratio
+  double log_err_prev_ = std::log(1e-4);  // the PI controller's memory: log of the last accepted step's ratio
   bool rejected_last_ = false;
   bool ahead_ = false;
   std::ptrdiff_t f_at_ = -1;  // the stage of K_ that holds f(ti_, yi_); −1: none
@@ -242,7 +243,7 @@ double OdeSolver::pair_step(F& f, double t, double h, const std::vector<double>&
   }
   // FSAL: the new solution is the last stage's argument, to the bit, so that the
   // stage reused next is f of exactly the state kept.
-  if (T.fsal()) out_ = tmp_;
+  if (fsal_) out_ = tmp_;
   return error_ratio(y, out_, err_);
 }
 
@@ -400,7 +401,7 @@ void OdeSolver::advance_pair(F& f, double& t, double t_end, std::vector<double>&
     yi_.swap(out_);
     ti_ = last && clip ? t_end : ti_ + h;
     record(h);
-    f_at_ = tab_->fsal() ? tab_->stages - 1 : -1;
+    f_at_ = fsal_ ? tab_->stages - 1 : -1;
     const bool changed = after_step(yi_);
     if (changed) after_changes_ = Changes::yes, f_at_ = -1;
     else if (after_changes_ == Changes::unknown) after_changes_ = Changes::never;
