@@ -7,6 +7,7 @@
 #include <boost/numeric/odeint.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -23,6 +24,14 @@ void lorenz(const State& x, State& dx, double) {
   dx[2] = x[0] * x[1] - 8.0 / 3.0 * x[2];
 }
 
+// An Odeint system x' = sys(x, t) on State as our solvers' f(t, y, dy).
+template <void (*Sys)(const State&, State&, double)>
+void as_f(double t, std::span<const double> y, std::span<double> dy) {
+  State in{y[0], y[1], y[2]}, out{};
+  Sys(in, out, t);
+  std::copy(out.begin(), out.end(), dy.begin());
+}
+
 // Ours against Odeint's `peer`, one step of h = 1e-2 per advance() for 200
 // steps: a tolerance no step can fail, and `after` as given to advance().
 template <class Peer, class After>
@@ -33,11 +42,7 @@ SolverStats step_for_step(SolverMethod m, Peer peer, After after) {
   State x{1.0, 1.0, 1.0}, xerr{};
   double t = 0;
   Profile p;
-  auto f = [](double tt, std::span<const double> yy, std::span<double> dy) {
-    State in{yy[0], yy[1], yy[2]}, out{};
-    lorenz(in, out, tt);
-    for (int i = 0; i < 3; ++i) dy[i] = out[i];
-  };
+  auto f = as_f<lorenz>;
   for (int k = 0; k < 200; ++k) {
     const double t0 = t;
     ours.advance(f, t, t0 + h, y, p, after);
@@ -79,11 +84,7 @@ std::vector<State> ours_at(SolverMethod m, double tol, const std::vector<double>
   std::vector<double> y{1.0, 0.0, 0.9};
   double t = 0;
   Profile p;
-  auto f = [](double tt, std::span<const double> yy, std::span<double> dy) {
-    State in{yy[0], yy[1], yy[2]}, out{};
-    rigid(in, out, tt);
-    for (int i = 0; i < 3; ++i) dy[i] = out[i];
-  };
+  auto f = as_f<rigid>;
   std::vector<State> out;
   for (double te : times) {
     s.advance(f, t, te, y, p);
