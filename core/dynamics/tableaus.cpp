@@ -12,7 +12,7 @@ namespace gacompare::core {
 namespace {
 
 // Bogacki–Shampine 3(2): P. Bogacki, L. F. Shampine, "A 3(2) pair of Runge–Kutta
-// formulas", Appl. Math. Lett. 2 (1989) 321–325, the pair of eq. (2)–(3); FSAL.
+// formulas", Appl. Math. Lett. 2 (1989) 321–325; FSAL.
 // Interpolant: the cubic Hermite polynomial through y, y', y_new, y'_new (the
 // FSAL stage), order 3: b_i(θ) = b_i (3θ² − 2θ³) + [i = 1](θ − 2θ² + θ³) + [i = 4](θ³ − θ²).
 constexpr double bs3_c[] = {0, 1.0 / 2, 3.0 / 4, 1};
@@ -49,7 +49,8 @@ constexpr double dopri5_dense[] = {
 
 // Tsitouras 5(4): Ch. Tsitouras, "Runge–Kutta pairs of order 5(4) satisfying only
 // the first column simplifying assumption", Comput. Math. Appl. 62 (2011)
-// 770–775, Table 1 (the pair) and §4 (its order-4 interpolant b_i(θ)); FSAL. The
+// 770–775: the pair and its order-4 interpolant b_i(θ), expanded in powers of θ;
+// FSAL. The
 // digits are the 80-digit values the paper's formulas give, as OrdinaryDiffEq.jl
 // (Tsitouras5, Tsit5Interp) distributes them.
 constexpr double tsit5_c[] = {
