@@ -585,7 +585,7 @@ int main(int argc, char** argv) {
   auto* sw = app.add_subcommand("sweep", "what accuracy costs in time: every solver x tolerance or step x backend");
   sw->add_option("scene", sw_scene, "scene file (JSON)")->required();
   sw->add_option("--out", sw_out, "sweep folder (cells/, sweep.md, sweep.csv, the diagram)")->required();
-  sw->add_option("--solvers", sw_solvers, "solvers to sweep, comma-separated")->delimiter(',')->allow_extra_args(false);
+  sw->add_option("--solvers", sw_solvers, "solvers to sweep, comma-separated (docs/scenes.md: solver.method)")->delimiter(',')->allow_extra_args(false);
   sw->add_option("--tolerances", sw_tol, "adaptive solvers: HI:LO, powers of ten");
   sw->add_option("--steps", sw_steps, "fixed-step solvers: DT:HALVINGS");
   sw->add_option("--repeat", sw_repeat, "timed runs per cell after one warm-up")->check(repeat_check);
@@ -593,7 +593,7 @@ int main(int argc, char** argv) {
       ->check(cli::positive_number())
       ->default_str("the scene's duration");
   sw->add_option("--shard", sw_shard, "run every N-th unit, starting at i: i/N (join with merge)");
-  sw->add_flag("--no-peer", sw_no_peer, "leave out Boost.Odeint's Cash-Karp");
+  sw->add_flag("--no-peer", sw_no_peer, "leave out Boost.Odeint's Cash-Karp and Dormand-Prince");
   sw->add_option("--error", sw_error,
                  "the diagram's x-axis, the error at the end: position|orientation|velocity|angular_velocity")
       ->check(cli::one_of("measure", {"position", "orientation", "velocity", "angular_velocity"}))
@@ -681,7 +681,11 @@ int main(int argc, char** argv) {
       compare::SweepSpec spec;
       for (const auto& n : sw_solvers) {
         const auto m = core::solver_method_from_string(n);
-        if (!m) throw input_error("--solvers: unknown solver '" + n + "'");
+        if (!m) {
+          std::string names;
+          for (const auto name : core::solver_method_names()) names += (names.empty() ? "" : ", ") + std::string(name);
+          throw input_error("--solvers: unknown solver '" + n + "' (one of " + names + ")");
+        }
         spec.solvers.push_back(*m);
       }
       std::tie(spec.tol_from, spec.tol_to) = parse_tolerances(sw_tol);

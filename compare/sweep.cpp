@@ -87,33 +87,42 @@ core::Run timed(const core::Scene& s, const std::shared_ptr<const core::Model>& 
   return r;
 }
 
-// Boost.Odeint's controlled Cash–Karp on the traditional backend's derivative,
-// observed at the same output times. Its error norm is its own (max over
+// The Boost.Odeint peers on the traditional backend's derivative, observed at
+// the same output times: odeint_cash_karp54, its controlled Cash–Karp, which
+// clips its steps at the output times as ours do; odeint_dopri5, its
+// Dormand–Prince with dense output (make_dense_output), which steps past them
+// and interpolates as our dopri5 does. Their error norm is their own (max over
 // components of |err| / (abs + rel·(|x| + h|dx/dt|))), close to ours but not equal.
-core::Run odeint_run(const core::Scene& s, double tol, std::vector<double>& seconds) {
+core::Run odeint_run(const core::Scene& s, const std::string& peer, double tol, std::vector<double>& seconds) {
   namespace odeint = boost::numeric::odeint;
   using B = traditional::Backend;
+  using State = std::vector<double>;
   const auto t0 = std::chrono::steady_clock::now();
   const auto model = B::build(s);
-  std::vector<double> x(B::state_size(model));
+  State x(B::state_size(model));
   B::initial_state(model, x);
   core::Run run;
-  auto sys = [&](const std::vector<double>& y, std::vector<double>& dy, double t) {
+  auto sys = [&](const State& y, State& dy, double t) {
     ++run.solver.derivative_evaluations;
     B::derivative(model, t, y, dy, run.profile);
   };
   const auto times = core::output_times(s);
-  auto observe = [&](const std::vector<double>& y, double t) {
+  auto observe = [&](const State& y, double t) {
     core::Sample smp;
     smp.t = t;
     B::observe(model, y, smp);
     run.samples.push_back(std::move(smp));
   };
-  odeint::integrate_times(odeint::make_controlled(tol, tol, odeint::runge_kutta_cash_karp54<std::vector<double>>()),
-                          sys, x, times.begin(), times.end(), s.solver.dt, observe);
+  if (peer == "odeint_dopri5")
+    odeint::integrate_times(odeint::make_dense_output(tol, tol, odeint::runge_kutta_dopri5<State>()), sys, x,
+                            times.begin(), times.end(), s.solver.dt, observe);
+  else
+    odeint::integrate_times(odeint::make_controlled(tol, tol, odeint::runge_kutta_cash_karp54<State>()), sys, x,
+                            times.begin(), times.end(), s.solver.dt, observe);
   seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   return run;
 }
+bool is_peer(const std::string& solver) { return solver.starts_with("odeint_"); }
 
 json cell(const std::string& backend, const core::Scene& scene, const core::Run& run, const core::Run& ref,
           const std::vector<double>& secs) {
@@ -153,7 +162,7 @@ void write_equal_accuracy(std::ostringstream& md, const std::vector<Row>& rows, 
   std::ostringstream table;
   int lines = 0;
   for (const auto& solver : solvers) {
-    if (solver == "odeint_cash_karp54") continue;  // the peer has one backend: nothing to compare at equal error
+    if (is_peer(solver)) continue;  // a peer has one backend: nothing to compare at equal error
     std::vector<std::pair<std::string, std::vector<EqualAccuracyPoint>>> lines_of;
     double lo = 0, hi = INFINITY;
     for (const auto& b : backends) {
@@ -224,11 +233,13 @@ std::vector<Unit> sweep_units(const SweepSpec& spec, const core::Scene& scene) {
     }
   }
   if (spec.peer && !projection(scene))
-    for (int e = spec.tol_from; e <= spec.tol_to; ++e) {
-      const double tol = std::pow(10.0, -e);
-      units.push_back({"odeint_cash_karp54-tol1e-" + std::to_string(e), "odeint_cash_karp54", format_number("tol %.0e", tol),
-                       {core::SolverMethod::cash_karp45, scene.solver.dt, tol, tol}});
-    }
+    for (const auto& [peer, ours] : {std::pair{"odeint_cash_karp54", core::SolverMethod::cash_karp45},
+                                     std::pair{"odeint_dopri5", core::SolverMethod::dopri5}})
+      for (int e = spec.tol_from; e <= spec.tol_to; ++e) {
+        const double tol = std::pow(10.0, -e);
+        units.push_back({std::string(peer) + "-tol1e-" + std::to_string(e), peer, format_number("tol %.0e", tol),
+                         {ours, scene.solver.dt, tol, tol}});
+      }
   return units;
 }
 
@@ -244,11 +255,11 @@ json run_unit(const Unit& unit, const core::Scene& swept, const core::Run& ref, 
   core::Scene s = swept;
   s.solver = unit.spec;
   json cells = json::array();
-  if (unit.solver == "odeint_cash_karp54") {
+  if (is_peer(unit.solver)) {
     std::vector<double> warm, secs;
-    odeint_run(s, unit.spec.abs_tol, warm);
+    odeint_run(s, unit.solver, unit.spec.abs_tol, warm);
     core::Run run;
-    for (int r = 0; r < spec.repeats; ++r) run = odeint_run(s, unit.spec.abs_tol, secs);
+    for (int r = 0; r < spec.repeats; ++r) run = odeint_run(s, unit.solver, unit.spec.abs_tol, secs);
     cells.push_back(cell("traditional", s, run, ref, secs));
   } else {
     // Every variant in turn, the order rotated each repeat so drift hits them

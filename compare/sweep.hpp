@@ -1,7 +1,8 @@
 #pragma once
 // `gacompare sweep`: what accuracy costs in time. Every solver × tolerance (or
-// step) × backend on one scene, plus Boost.Odeint's controlled Cash–Karp 5(4) as
-// a peer, each cell's error against a reference run and its time.
+// step) × backend on one scene, plus Boost.Odeint's controlled Cash–Karp 5(4) and
+// dense-output Dormand–Prince 5(4) as peers, each cell's error against a
+// reference run and its time.
 //
 // The unit of work is a setting (one solver at one tolerance or step): both
 // backends run in it, interleaved, so drift hits them alike. Each finished unit
@@ -45,7 +46,7 @@ struct SweepSpec {
   int dt_halvings = 4;
   int repeats = 3;
   double max_duration = 0;        // > 0: cut the scene to this duration
-  bool peer = true;               // Boost.Odeint's Cash–Karp, where the scene has no projection
+  bool peer = true;               // Boost.Odeint's Cash–Karp and Dormand–Prince, where the scene has no projection
   std::optional<Measure> error;   // the diagram's x-axis; nullopt: default_error(scene)
   std::string build;              // the commit of the build that runs the cells (cell_key)
 };
@@ -68,7 +69,7 @@ bool cell_is_current(const SweepCell& cell, const nlohmann::json& key);
 
 struct Unit {
   std::string id;       // file name stem: solver-setting
-  std::string solver;   // a SolverMethod name, or "odeint_cash_karp54"
+  std::string solver;   // a SolverMethod name, or a peer: "odeint_cash_karp54", "odeint_dopri5"
   std::string setting;  // "tol 1e-06" / "dt 0.005"
   core::SolverSpec spec;
 };

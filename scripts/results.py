@@ -40,6 +40,8 @@ PAGES = {
     "algebra": ("the algebra and the conformal geometry against their twins", algebra.generate),
     "operations": ("multiplies and adds per operation in the compiled code, each algebra", operations.generate),
     "meshes": ("mass properties by the report's voxels against exact integrals; hulls", dynamics.meshes),
+    "integrators": ("the SciML rigid body: work-precision of the embedded pairs and Odeint's steppers",
+                    dynamics.integrators),
 }
 # Pages that run no built binary (a compiler and objdump only).
 WITHOUT_BUILD = {"operations"}

@@ -1,12 +1,14 @@
 #include "core/dynamics/ode.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace gacompare::core {
 
 bool is_adaptive(SolverMethod m) {
-  return m == SolverMethod::rk4_doubling || m == SolverMethod::cash_karp45;
+  return m == SolverMethod::rk4_doubling || m == SolverMethod::cash_karp45 || butcher_tableau(m) != nullptr;
 }
 
 OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> velocity_of)
@@ -17,6 +19,20 @@ OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> vel
     case SolverMethod::rk4:
     case SolverMethod::rk4_doubling:
     case SolverMethod::cash_karp45:
+      break;
+    case SolverMethod::bs3:
+    case SolverMethod::dopri5:
+    case SolverMethod::tsit5:
+    case SolverMethod::vern6:
+    case SolverMethod::vern7:
+    case SolverMethod::vern8:
+    case SolverMethod::vern9:
+      tab_ = butcher_tableau(spec.method);
+      fsal_ = tab_->fsal();
+      for (int i = 0; i < tab_->stages; ++i) e_.push_back(tab_->b[i] - tab_->bhat[i]);
+      K_.resize(static_cast<std::size_t>(tab_->stages) * n);
+      weights_.resize(static_cast<std::size_t>(tab_->stages));
+      ys_.resize(n);
       break;
     case SolverMethod::symplectic_euler:
     case SolverMethod::velocity_verlet:
@@ -59,6 +75,53 @@ void OdeSolver::stop(const std::string& why, double t, double h, const std::vect
   if (const std::string who = is_adaptive(spec_.method) ? worst(err) : ""; !who.empty())
     msg << "; " << who << " has the largest error estimate";
   throw run_error(msg.str());
+}
+
+// The embedded pairs' step control (ode.hpp): PI after an accepted step, I after
+// a rejected one. A clipped last step does not shrink the next interval's first try.
+void OdeSolver::control(double ratio, double h, bool clipped) {
+  const double k = tab_->embedded_order + 1;
+  if (ratio <= 1.0) {
+    // 0.9 E_n^(−0.7/k) E_{n−1}^(0.4/k) as one exp of logs (log E_{n−1} kept from
+    // the step before): two transcendental calls a step instead of two pow's.
+    static const double log_floor = std::log(1e-4);  // DOPRI5's facold floor
+    const double log_ratio = ratio > 0 ? std::log(ratio) : log_floor;
+    double grow = ratio == 0 ? 10.0 : 0.9 * std::exp((0.4 * log_err_prev_ - 0.7 * log_ratio) / k);
+    grow = std::clamp(grow, 0.2, rejected_last_ ? 1.0 : 10.0);
+    log_err_prev_ = std::max(log_ratio, log_floor);
+    rejected_last_ = false;
+    h_ = clipped ? std::max(h_, h * grow) : h * grow;
+    return;
+  }
+  ++stats_.steps_rejected;
+  rejected_last_ = true;
+  h_ = h * (std::isfinite(ratio) ? std::max(0.2, 0.9 * std::pow(ratio, -1.0 / k)) : 0.2);
+  if (!(h_ > 64 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(ti_)))) {
+    std::ostringstream why;
+    why << "step size underflow (error ratio " << ratio
+        << "): the tolerance cannot be met or the derivative is not finite";
+    stop(why.str(), ti_, h_, err_);
+  }
+}
+
+// y(t) on the last accepted step [t0_, t0_ + hlast_] from its interpolant.
+void OdeSolver::interpolate(double t, std::vector<double>& y) {
+  const ButcherTableau& T = *tab_;
+  const double theta = (t - t0_) / hlast_;
+  const auto deg = static_cast<std::size_t>(T.dense_degree), s = static_cast<std::size_t>(T.stages), n = y.size();
+  std::vector<double>& w = weights_;
+  for (std::size_t i = 0; i < s; ++i) {
+    double wi = 0;  // Horner in θ, then the factor θ of every b_i(θ)
+    for (std::size_t p = deg; p-- > 0;) wi = wi * theta + T.dense[i * deg + p];
+    w[i] = wi * theta;
+  }
+  // Σ_i b_i(θ) = θ: the same differences from k_1 as the step (pair_step).
+  for (std::size_t m = 0; m < n; ++m) {
+    const double k1 = K_[m];
+    double acc = theta * k1;
+    for (std::size_t i = 1; i < s; ++i) acc += w[i] * (K_[i * n + m] - k1);
+    y[m] = ys_[m] + hlast_ * acc;
+  }
 }
 
 void OdeSolver::record(double h) {

@@ -1,7 +1,7 @@
 #pragma once
 // ODE solvers on a flat state (Appendix B): each backend packs its own state into
-// contiguous doubles and supplies f(t, y, dydt). Every advance() lands exactly on
-// the requested time, so samples fall on the output times.
+// contiguous doubles and supplies f(t, y, dydt). Every advance() leaves y at the
+// requested time, so samples fall on the output times.
 //
 //   euler         eq. 55, fixed step
 //   rk4           eq. 56, fixed step
@@ -10,13 +10,36 @@
 //   cash_karp45   §B.3.2, eq. 57–58, Table 4: the 5th-order solution is kept
 //                 (local extrapolation) and the embedded 4th-order one gives the error
 //
-// Step control (§B.3.3, eq. 59, done properly): by default the caller's physical
+// Step control of these two (§B.3.3, eq. 59, done properly): by default the caller's physical
 // error norm (set_error_norm; core/model/scene.hpp ErrorNorm), else the error of component i is
 // scaled by abs_tol + rel_tol·max(|y_i|, |y_new_i|); the worst ratio E sets the
 // step, h_new = h · clamp(0.9 · E^(−1/(order+1)), 0.2, 5). The report's eq. 59 has
 // no safety factor or limits, which lets one lucky step grow h without bound.
 // Fixed-step methods split each output interval into equal steps no longer than
 // dt (the recording mode of fn 39), so the last step is never a sliver.
+//
+// Beyond the report, embedded pairs written once as Butcher tableaus
+// (core/dynamics/tableaus.hpp) and driven by one stepper, pair_step:
+//   bs3 (3(2)), dopri5 and tsit5 (5(4)), vern6, vern7, vern8, vern9 (p(p−1)).
+// The higher-order solution is kept; the same error norm measures b − bhat. Their
+// step control is Gustafsson's PI controller (Hairer–Wanner II §IV.2, eq. 2.43c):
+// after an accepted step h_new = h · clamp(0.9 · E_n^(−β1) · E_{n−1}^(β2), 0.2, 10)
+// with β1 = 0.7/k, β2 = 0.4/k, k = embedded order + 1 (the power of h in the
+// estimate), E_{n−1} the last accepted step's ratio (at least 1e−4, as DOPRI5's
+// facold). These are Hairer–Wanner's values; with k = order of the pair they are
+// also OrdinaryDiffEq.jl's defaults (7/(10p), 2/(5p)), so both peers step alike.
+// A rejected step uses the I law, h · max(0.2, 0.9 · E^(−1/k)), never the memory
+// (it belongs to an accepted step), and the step after a rejection may not grow.
+//
+// Dense output (bs3, dopri5, tsit5: interpolants that cost no extra stage): the
+// solver steps past t_end and interpolates y(t_end), keeping its own state
+// ahead. The next advance() resumes from that state only when the caller hands
+// back exactly the (t, y) it was given; a caller that changed y (a collision's
+// impulse, a time of impact) restarts the solver from its own (t, y). A step
+// is only taken past t_end once after_step is known to leave states alone: a
+// projected or renormalised state would not lie on the interpolant, so with
+// such an after_step (or before the first accepted step tells) these methods
+// clip the last step of each interval, as the others do.
 //
 // Beyond the report, two split (symplectic) methods for a state of positions and
 // velocities, where the derivative of position i is velocity velocity_of[i]:
@@ -26,6 +49,7 @@
 //                     forces (exact Verlet when forces depend on position only);
 //                     a(x', v*) is reused as the next step's a (one evaluation).
 #include "core/error.hpp"
+#include "core/dynamics/tableaus.hpp"
 #include "core/model/scene.hpp"
 #include "core/stage.hpp"
 
@@ -87,10 +111,14 @@ class OdeSolver {
   void set_describe(DescribeFn who) { who_ = std::move(who); }
 
  private:
-  template <class F> void eval(F& f, double t, std::span<const double> y, std::vector<double>& dy);
+  template <class F> void eval(F& f, double t, std::span<const double> y, std::span<double> dy);
   template <class F> void rk4_step(F& f, double t, double h, const std::vector<double>& y, std::vector<double>& out);
   template <class F> void split_step(F& f, double t, double h, std::vector<double>& y);
   template <class F> double cash_karp_step(F& f, double t, double h, const std::vector<double>& y);
+  template <class F> double pair_step(F& f, double t, double h, const std::vector<double>& y);
+  template <class F, class G> void advance_pair(F& f, double& t, double t_end, std::vector<double>& y, G& after_step);
+  void interpolate(double t, std::vector<double>& y);
+  void control(double ratio, double h, bool clipped);
   double error_ratio(const std::vector<double>& y, const std::vector<double>& ynew,
                      const std::vector<double>& err) const;
   void record(double h);
@@ -106,14 +134,29 @@ class OdeSolver {
   std::vector<int> velocity_of_;
   bool have_acc_ = false;  // velocity_verlet: k5_ holds a(x, v) of the current state
   std::vector<double> k1_, k2_, k3_, k4_, k5_, k6_, tmp_, out_, half_, err_;
+
+  // The embedded pairs: their tableau, b − bhat, the stages of the last step
+  // (stage i at [i·n, (i+1)·n)), its start (ys_ at t0_, step hlast_) and the
+  // solver's own state (yi_ at ti_), which is ahead of the caller's when ahead_.
+  // given_ at t_given_: what the caller was handed, to tell whether it changed y.
+  enum class Changes { unknown, never, yes };  // what after_step has done to states
+  const ButcherTableau* tab_ = nullptr;
+  bool fsal_ = false;  // tab_->fsal(), once
+  std::vector<double> e_, K_, weights_, ys_, yi_, given_;
+  double t0_ = 0, hlast_ = 0, ti_ = 0, t_given_ = NAN;
+  double log_err_prev_ = std::log(1e-4);  // the PI controller's memory: log of the last accepted step's ratio
+  bool rejected_last_ = false;
+  bool ahead_ = false;
+  std::ptrdiff_t f_at_ = -1;  // the stage of K_ that holds f(ti_, yi_); −1: none
+  Changes after_changes_ = Changes::unknown;
 };
 
 // ---------------------------------------------------------------------------------
 
 template <class F>
-void OdeSolver::eval(F& f, double t, std::span<const double> y, std::vector<double>& dy) {
+void OdeSolver::eval(F& f, double t, std::span<const double> y, std::span<double> dy) {
   ++stats_.derivative_evaluations;
-  f(t, y, std::span<double>(dy));
+  f(t, y, dy);
 }
 
 template <class F>
@@ -162,6 +205,48 @@ double OdeSolver::cash_karp_step(F& f, double t, double h, const std::vector<dou
   return error_ratio(y, out_, err_);
 }
 
+// One step of the embedded pair: the kept solution into out_, h·Σ(b − bhat)k into
+// err_; stages into K_. An FSAL pair starts from the last stage of the step before.
+// Stages are y + h(c_i k_1 + Σ_j a_ij (k_j − k_1)) and the solution y + h(k_1 +
+// Σ_j b_j (k_j − k_1)): the same numbers in exact arithmetic (rows sum to c_i, Σb
+// = 1), but Verner's coefficients reach |a_ij| ~ 200, and their doubles miss
+// c_i by 2e-14 and Σ b_i c_i = 1/2 by 7e-12 (vern6): an O(h) global error of
+// 5e-11 on a Kepler orbit. With differences the rounded coefficients only
+// multiply O(h) quantities.
+template <class F>
+double OdeSolver::pair_step(F& f, double t, double h, const std::vector<double>& y) {
+  const ButcherTableau& T = *tab_;
+  const std::size_t n = y.size(), s = static_cast<std::size_t>(T.stages);
+  const auto stage = [&](std::size_t i) { return std::span<double>(K_).subspan(i * n, n); };
+  if (f_at_ < 0) eval(f, t, y, stage(0));
+  else if (f_at_ > 0) std::copy_n(K_.begin() + f_at_ * static_cast<std::ptrdiff_t>(n), n, K_.begin());
+  for (std::size_t i = 1; i < s; ++i) {
+    const double* a = T.a + i * (i - 1) / 2;
+    for (std::size_t m = 0; m < n; ++m) {
+      const double k1 = K_[m];
+      double acc = T.c[i] * k1;
+      for (std::size_t j = 1; j < i; ++j) acc += a[j] * (K_[j * n + m] - k1);
+      tmp_[m] = y[m] + h * acc;
+    }
+    eval(f, t + T.c[i] * h, tmp_, stage(i));
+  }
+  for (std::size_t m = 0; m < n; ++m) {
+    const double k1 = K_[m];
+    double acc = k1, err = 0;
+    for (std::size_t j = 1; j < s; ++j) {
+      const double d = K_[j * n + m] - k1;
+      acc += T.b[j] * d;
+      err += e_[j] * d;  // Σ e_j = 0
+    }
+    out_[m] = y[m] + h * acc;
+    err_[m] = h * err;
+  }
+  // FSAL: the new solution is the last stage's argument, to the bit, so that the
+  // stage reused next is f of exactly the state kept.
+  if (fsal_) out_ = tmp_;
+  return error_ratio(y, out_, err_);
+}
+
 template <class F>
 void OdeSolver::split_step(F& f, double t, double h, std::vector<double>& y) {
   const std::size_t n = y.size();
@@ -201,6 +286,7 @@ void OdeSolver::advance(F&& f, double& t, double t_end, std::vector<double>& y, 
   // reads a step are a measurable share of a cheap derivative's run, an
   // overhead no peer pays.
   ScopedStage timed(profile, Stage::integrate);
+  if (tab_) return advance_pair(f, t, t_end, y, after_step);
 
   if (!is_adaptive(spec_.method)) {
     const double steps = std::max(1.0, std::ceil(span / spec_.dt * (1 - 1e-12)));
@@ -274,6 +360,67 @@ void OdeSolver::advance(F&& f, double& t, double t_end, std::vector<double>& y, 
       }
     }
   }
+}
+
+template <class F, class G>
+void OdeSolver::advance_pair(F& f, double& t, double t_end, std::vector<double>& y, G& after_step) {
+  // Resume from the solver's own state only if the caller kept what it was handed.
+  if (!(t == t_given_ && y == given_)) {
+    yi_ = y;
+    ti_ = t;
+    ahead_ = false;
+    f_at_ = -1;
+  }
+  while (true) {
+    if (ahead_ && t_end < ti_) {
+      interpolate(t_end, y);
+      break;
+    }
+    if (ti_ >= t_end) {  // landed on t_end exactly
+      y = yi_;
+      ahead_ = false;
+      break;
+    }
+    if (static_cast<double>(stats_.steps_accepted + stats_.steps_rejected) >= budget_) {
+      std::ostringstream why;
+      why << "the budget of " << budget_ << " steps is spent (--max-steps raises it)";
+      stop(why.str(), ti_, h_, err_);
+    }
+    const bool clip = tab_->dense_degree == 0 || after_changes_ != Changes::never;
+    const bool last = ti_ + h_ >= t_end;
+    const double h = last && clip ? t_end - ti_ : h_;
+    const double ratio = pair_step(f, ti_, h, yi_);
+    if (!(ratio <= 1.0)) {
+      f_at_ = 0;  // the trial's first stage is still f(ti_, yi_)
+      control(ratio, h, false);
+      continue;
+    }
+    t0_ = ti_;
+    hlast_ = h;
+    ys_.swap(yi_);
+    yi_.swap(out_);
+    ti_ = last && clip ? t_end : ti_ + h;
+    record(h);
+    f_at_ = fsal_ ? tab_->stages - 1 : -1;
+    const bool changed = after_step(yi_);
+    if (changed) after_changes_ = Changes::yes, f_at_ = -1;
+    else if (after_changes_ == Changes::unknown) after_changes_ = Changes::never;
+    ahead_ = ti_ > t_end;
+    if (ahead_ && changed) {
+      // A changed state is off the interpolant: take this step again, clipped,
+      // from its start (from now on every step is clipped).
+      yi_.swap(ys_);
+      ti_ = t0_;
+      ahead_ = false;
+      --stats_.steps_accepted;
+      ++stats_.steps_rejected;
+      continue;
+    }
+    control(ratio, h, last && clip);
+  }
+  t = t_end;
+  given_ = y;
+  t_given_ = t_end;
 }
 
 }  // namespace gacompare::core

@@ -40,6 +40,20 @@ std::string_view to_string(SolverMethod m) {
       return "rk4_doubling";
     case SolverMethod::cash_karp45:
       return "cash_karp45";
+    case SolverMethod::bs3:
+      return "bs3";
+    case SolverMethod::dopri5:
+      return "dopri5";
+    case SolverMethod::tsit5:
+      return "tsit5";
+    case SolverMethod::vern6:
+      return "vern6";
+    case SolverMethod::vern7:
+      return "vern7";
+    case SolverMethod::vern8:
+      return "vern8";
+    case SolverMethod::vern9:
+      return "vern9";
     case SolverMethod::symplectic_euler:
       return "symplectic_euler";
     case SolverMethod::velocity_verlet:
@@ -55,8 +69,10 @@ std::string_view constraint_name(const Constraint& c) {
 }
 
 std::optional<SolverMethod> solver_method_from_string(std::string_view s) {
-  for (auto m : {SolverMethod::euler, SolverMethod::rk4, SolverMethod::rk4_doubling,
-                 SolverMethod::cash_karp45, SolverMethod::symplectic_euler, SolverMethod::velocity_verlet})
+  for (auto m : {SolverMethod::euler, SolverMethod::rk4, SolverMethod::rk4_doubling, SolverMethod::cash_karp45,
+                 SolverMethod::bs3, SolverMethod::dopri5, SolverMethod::tsit5, SolverMethod::vern6, SolverMethod::vern7,
+                 SolverMethod::vern8, SolverMethod::vern9, SolverMethod::symplectic_euler,
+                 SolverMethod::velocity_verlet})
     if (to_string(m) == s) return m;
   return std::nullopt;
 }
@@ -353,8 +369,9 @@ constexpr std::array<std::string_view, 6> kConstraintTypes = {"distance_to_point
                                                                "on_line",           "on_circle", "on_helix"};
 constexpr std::array<std::string_view, 3> kDrift = {"off", "baumgarte", "projection"};
 constexpr std::array<std::string_view, 2> kGeneratorTypes = {"particle_net", "particle_chain"};
-constexpr std::array<std::string_view, 6> kMethods = {
-    "euler", "rk4", "rk4_doubling", "cash_karp45", "symplectic_euler", "velocity_verlet"};
+constexpr std::array<std::string_view, 13> kMethods = {
+    "euler", "rk4",   "rk4_doubling", "cash_karp45", "bs3",   "dopri5",           "tsit5",
+    "vern6", "vern7", "vern8",        "vern9",       "symplectic_euler", "velocity_verlet"};
 constexpr std::array<std::string_view, 9> kShapes = {"box",  "tetrahedron", "pyramid", "octahedron", "icosahedron",
                                                      "hull", "mesh",        "sphere",  "capsule"};
 
@@ -981,5 +998,7 @@ Scene load_scene(const std::filesystem::path& file, const Limits& limits) {
 std::vector<CollisionCaseSpec> load_collision_cases(const std::filesystem::path& file) {
   return parse_collision_cases(read_file(file, "collision case file", Links::follow), file);
 }
+
+std::span<const std::string_view> solver_method_names() { return kMethods; }
 
 }  // namespace gacompare::core

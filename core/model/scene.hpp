@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <variant>
 #include <vector>
@@ -17,9 +18,14 @@ namespace gacompare::core {
 
 using Vec3 = Eigen::Vector3d;
 
-enum class SolverMethod { euler, rk4, rk4_doubling, cash_karp45, symplectic_euler, velocity_verlet };
+enum class SolverMethod {
+  euler, rk4, rk4_doubling, cash_karp45,
+  bs3, dopri5, tsit5, vern6, vern7, vern8, vern9,  // embedded pairs (core/dynamics/tableaus.hpp)
+  symplectic_euler, velocity_verlet
+};
 std::string_view to_string(SolverMethod m);
 std::optional<SolverMethod> solver_method_from_string(std::string_view s);
+std::span<const std::string_view> solver_method_names();  // every method's name, in the order above
 
 // How an adaptive step's error is measured against the tolerances:
 //   physical (default): per body, the errors of the position, the velocity, the

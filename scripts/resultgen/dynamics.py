@@ -1,7 +1,7 @@
 """The dynamics pages: particles (work-precision sweeps), rigid bodies
 (stability, steps and time at equal accuracy, what each representation costs),
-the long horizon (the Lie-group integrators over thousands of periods) and
-meshes (mass properties, hulls)."""
+the long horizon (the Lie-group integrators over thousands of periods),
+meshes (mass properties, hulls) and integrators (the SciML rigid body)."""
 import json
 import os
 import re
@@ -130,6 +130,12 @@ def _hulls(ctx):
         label = what.get(name, "{}").format(f"{int(arg):,}" if name != "BM_HullOfFlatPoints" else arg)
         rows.append(f"| `{b['run_name']}` | {label} | {shown} | {b.get('repetitions', reps)} |")
     return "\n".join(rows)
+
+
+def integrators(ctx):
+    out = ctx.run([ctx.tool("bench", "rigid_body_sciml"), *(["--quick"] if ctx.quick else [])])
+    parts = dict(re.findall(r"<!-- part: ([a-z-]+) -->\n(.*?)(?=<!-- part: |\Z)", out, re.S))
+    return {"blocks": parts, "headline": []}
 
 
 def meshes(ctx):

@@ -425,11 +425,11 @@ TEST(Cli, ShardedSweepMergesIntoTheUnshardedOneAndResumes) {
   EXPECT_TRUE(fs::exists(whole / "sweep.csv"));
   EXPECT_TRUE(fs::exists(whole / "kepler_work_precision.svg"));
   EXPECT_NE(read_text(whole / "sweep.html").find("<svg"), std::string::npos);
-  EXPECT_NE(r.err.find("ran 10 unit(s), skipped 0"), std::string::npos) << r.err;  // 4 + 2 + 4 odeint
+  EXPECT_NE(r.err.find("ran 14 unit(s), skipped 0"), std::string::npos) << r.err;  // 4 + 2 + 4 + 4 odeint
 
   // Run again: every unit is done, nothing reruns.
   const Result again = gacompare(sweep + whole.string());
-  EXPECT_NE(again.err.find("ran 0 unit(s), skipped 10"), std::string::npos) << again.err;
+  EXPECT_NE(again.err.find("ran 0 unit(s), skipped 14"), std::string::npos) << again.err;
 
   std::string dirs;
   for (int i = 0; i < 3; ++i) {
@@ -446,6 +446,16 @@ TEST(Cli, ShardedSweepMergesIntoTheUnshardedOneAndResumes) {
 
   const Result partial = gacompare(std::string("merge ") + fresh_dir("sweep_shard0").string() + " --out " + fresh_dir("x").string());
   EXPECT_EQ(partial.code, 2);  // sweep_shard0 was just emptied: not a sweep folder
+}
+
+TEST(Cli, SweepNamesTheSolversItKnows) {
+  const Result r = gacompare("sweep " + std::string(GACOMPARE_DATA_DIR) + "/scenes/kepler.json --solvers rk5 --out " +
+                             fresh_dir("sweep_unknown").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--solvers: unknown solver 'rk5' (one of euler, rk4, rk4_doubling, cash_karp45, bs3, dopri5, "
+                       "tsit5, vern6, vern7, vern8, vern9, symplectic_euler, velocity_verlet)"),
+            std::string::npos)
+      << r.err;
 }
 
 // A sweep of a rigid scene measures the four errors; its diagram is drawn on the

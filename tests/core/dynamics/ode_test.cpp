@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 namespace gacompare::core {
@@ -93,20 +94,24 @@ TEST(Ode, FixedStepsSplitTheIntervalEvenly) {
   EXPECT_DOUBLE_EQ(y[0], 0.25);
 }
 
-TEST(Ode, NonFiniteDerivativeIsAnErrorNotAHang) {
-  OdeSolver s(spec(SolverMethod::cash_karp45, 0.1), 1);
+// A derivative that turns NaN at t = 0.5: an adaptive method's step shrinks
+// until it stops with a run error, never a hang.
+void expect_step_size_underflow(SolverMethod m) {
+  OdeSolver s(spec(m, 0.1), 1);
   std::vector<double> y{1.0};
   double t = 0;
   Profile p;
   auto f = [](double tt, std::span<const double>, std::span<double> dy) { dy[0] = tt > 0.5 ? NAN : 1.0; };
   try {
     s.advance(f, t, 1.0, y, p);
-    FAIL() << "expected an error";
+    FAIL() << to_string(m) << ": expected an error";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::run);
     EXPECT_NE(std::string(e.what()).find("step size underflow"), std::string::npos) << e.what();
   }
 }
+
+TEST(Ode, NonFiniteDerivativeIsAnErrorNotAHang) { expect_step_size_underflow(SolverMethod::cash_karp45); }
 
 }  // namespace
 }  // namespace gacompare::core
@@ -171,6 +176,186 @@ TEST(Ode, SymplecticMethodsKeepEnergyBoundedOverLongRuns) {
 
 TEST(Ode, SplitMethodsNeedAPositionVelocityLayout) {
   EXPECT_THROW(OdeSolver({SolverMethod::velocity_verlet, 0.1, 1e-9, 1e-9}, 2), Error);
+}
+
+}  // namespace
+}  // namespace gacompare::core
+
+namespace gacompare::core {
+namespace {
+
+// The embedded pairs (core/dynamics/tableaus.hpp) in the stepper.
+constexpr SolverMethod kPairs[] = {SolverMethod::bs3,   SolverMethod::dopri5, SolverMethod::tsit5, SolverMethod::vern6,
+                                   SolverMethod::vern7, SolverMethod::vern8,  SolverMethod::vern9};
+
+// A Kepler orbit of eccentricity 0.5 (a = 1, GM = 1, period 2π) from perihelion:
+// nonlinear, every elementary differential is non-zero, and after one period
+// the exact state is the initial one.
+void kepler(double, std::span<const double> y, std::span<double> dy) {
+  const double r3 = std::pow(y[0] * y[0] + y[1] * y[1], 1.5);
+  dy[0] = y[2];
+  dy[1] = y[3];
+  dy[2] = -y[0] / r3;
+  dy[3] = -y[1] / r3;
+}
+const std::vector<double> kKepler0{0.8, 0.0, 0.0, std::sqrt(1.2 / 0.8)};
+
+// One period in `steps` equal steps: a tolerance no step can fail, and an
+// after_step that says it changed the state, so the solver clips every step at
+// the output time it is given (no dense output) and each advance() is one step.
+double kepler_error(SolverMethod m, int steps) {
+  const double T = 8 * std::numbers::pi;
+  OdeSolver s({m, T / steps, 1e300, 0}, 4);
+  std::vector<double> y = kKepler0;
+  double t = 0;
+  Profile p;
+  for (int k = 1; k <= steps; ++k) s.advance(kepler, t, T * k / steps, y, p, [](std::vector<double>&) { return true; });
+  EXPECT_EQ(s.stats().steps_accepted, static_cast<std::uint64_t>(steps));
+  double e = 0;
+  for (int i = 0; i < 4; ++i) e = std::max(e, std::abs(y[static_cast<std::size_t>(i)] - kKepler0[static_cast<std::size_t>(i)]));
+  return e;
+}
+
+struct Slope {
+  SolverMethod method;
+  int steps;        // h = 8π/steps and h/2
+  double low, high;  // the slope log2(e(h)/e(h/2)) must lie within
+};
+
+TEST(OdePairs, ConvergenceSlopesMatchTheOrders) {
+  // Kepler e = 0.2 over four periods, the error against the exact (initial)
+  // state, at steps where it lies between 1e-4 and 1e-10: above rounding (the
+  // differenced stages keep every pair's floor near 3e-13), and past the first
+  // doublings where the slopes still wander. bs3, dopri5, tsit5 and vern7 show
+  // their orders ±0.3 (measured 2.98, 4.99, 5.00, 6.88). Verner's "most
+  // efficient" 6(5), 8(7) and 9(8) have order-(p+1) error coefficients tuned
+  // ~1e-6 small, so before double precision runs out the next term dominates and
+  // they converge faster than their order (measured 6.94, 9.48, 10.81, and the
+  // same on Lorenz and the SciML rigid body): for them the slope must be at
+  // least p − 0.3, and the order itself is pinned by
+  // Tableaus.OrderConditionsHoldThroughTheStatedOrders (exact through p, a
+  // defect at p + 1).
+  const Slope cases[] = {{SolverMethod::bs3, 1280, 2.7, 3.3},   {SolverMethod::dopri5, 1280, 4.7, 5.3},
+                         {SolverMethod::tsit5, 1280, 4.7, 5.3}, {SolverMethod::vern7, 320, 6.7, 7.3},
+                         {SolverMethod::vern6, 320, 5.7, 8.0},  {SolverMethod::vern8, 80, 7.7, 10.0},
+                         {SolverMethod::vern9, 80, 8.7, 11.5}};
+  for (const Slope& c : cases) {
+    const double e1 = kepler_error(c.method, c.steps), e2 = kepler_error(c.method, 2 * c.steps);
+    const double slope = std::log2(e1 / e2);
+    EXPECT_GE(slope, c.low) << to_string(c.method) << " errors " << e1 << ", " << e2;
+    EXPECT_LE(slope, c.high) << to_string(c.method) << " errors " << e1 << ", " << e2;
+    // At least 3× the rounding floor (≤ 3e-13 at these steps), which would flatten the slope.
+    EXPECT_GT(e2, 1e-12) << to_string(c.method) << ": measured too close to rounding";
+  }
+}
+
+TEST(OdePairs, MeetTheirToleranceAndReuseTheirLastStage) {
+  for (SolverMethod m : kPairs)
+    for (double tol : {1e-6, 1e-9, 1e-12}) {
+      double err;
+      SolverStats st;
+      oscillator(m, tol, err, st);
+      // The bound of CashKarpMeetsItsTolerance: each step errs at most 2·tol.
+      EXPECT_LT(err, 2 * tol * static_cast<double>(st.steps_accepted)) << to_string(m) << " tol " << tol;
+      // Stages: an FSAL pair evaluates its first stage once and s − 1 a step
+      // after that; any pair's retry after a rejection reuses the first stage.
+      const ButcherTableau& T = *butcher_tableau(m);
+      const std::uint64_t s = static_cast<std::uint64_t>(T.stages);
+      const std::uint64_t expected = T.fsal() ? 1 + (s - 1) * (st.steps_accepted + st.steps_rejected)
+                                              : s * st.steps_accepted + (s - 1) * st.steps_rejected;
+      EXPECT_EQ(st.derivative_evaluations, expected) << to_string(m) << " tol " << tol;
+    }
+}
+
+// x'' = −x from (1, 0) sampled at `outputs` equal intervals over one period,
+// one advance() each; the worst error over the samples.
+double sampled_oscillator(OdeSolver& s, int outputs, const std::function<bool(std::vector<double>&)>& after,
+                          std::vector<double>* radii = nullptr) {
+  std::vector<double> y{1.0, 0.0};
+  double t = 0, worst = 0;
+  Profile p;
+  auto f = [](double, std::span<const double> yy, std::span<double> dy) { dy[0] = yy[1]; dy[1] = -yy[0]; };
+  for (int k = 1; k <= outputs; ++k) {
+    s.advance(f, t, 2 * std::numbers::pi * k / outputs, y, p, after);
+    worst = std::max(worst, std::hypot(y[0] - std::cos(t), y[1] + std::sin(t)));
+    if (radii) radii->push_back(std::hypot(y[0], y[1]));
+  }
+  return worst;
+}
+const auto kLeaves = [](std::vector<double>&) { return false; };
+
+TEST(OdePairs, DenseOutputStepsPastTheOutputTimes) {
+  for (SolverMethod m : {SolverMethod::bs3, SolverMethod::dopri5, SolverMethod::tsit5}) {
+    // bs3 at 1e-5: at 1e-8 its third order needs ~1000 steps a period itself.
+    const double tol = m == SolverMethod::bs3 ? 1e-5 : 1e-8;
+    // A first try (1e-3) inside the first output interval (2π/1000): the first
+    // step is clipped until after_step is known to leave states alone.
+    OdeSolver dense(spec(m, 1e-3, tol), 2), once(spec(m, 1e-3, tol), 2);
+    const double worst = sampled_oscillator(dense, 1000, kLeaves);
+    // Far fewer steps than the 1000 outputs: no step is clipped to an output time.
+    EXPECT_LT(dense.stats().steps_accepted, 300u) << to_string(m);
+    // The interpolants (order 3 for bs3, 4 for the others) between steps keep
+    // the error of the steps: the same 2·tol a step bound as above.
+    EXPECT_LT(worst, 2 * tol * static_cast<double>(dense.stats().steps_accepted)) << to_string(m);
+    // Untouched between calls, the solver continues its own steps: the same
+    // steps, to the bit, as one advance() over the whole period.
+    sampled_oscillator(once, 1, kLeaves);
+    EXPECT_EQ(dense.stats().steps_accepted, once.stats().steps_accepted) << to_string(m);
+    EXPECT_EQ(dense.stats().derivative_evaluations, once.stats().derivative_evaluations) << to_string(m);
+  }
+  // A pair without a free interpolant clips its last step at every output time.
+  OdeSolver clipped(spec(SolverMethod::vern7, 0.1, 1e-8), 2);
+  sampled_oscillator(clipped, 1000, kLeaves);
+  EXPECT_GE(clipped.stats().steps_accepted, 1000u);
+}
+
+TEST(OdePairs, ACallerThatChangesTheStateRestartsTheSolver) {
+  // dopri5 is ahead of the caller after the first advance(); the caller then
+  // kicks the velocity (as a collision's impulse does). From the kicked state
+  // (1 + 0.5i rotating) the exact solution is known; had the solver resumed its
+  // own unkicked state, it would be off by the kick, 0.5.
+  for (SolverMethod m : {SolverMethod::bs3, SolverMethod::dopri5, SolverMethod::tsit5}) {
+    OdeSolver s(spec(m, 0.1, 1e-10), 2);
+    std::vector<double> y{1.0, 0.0};
+    double t = 0;
+    Profile p;
+    auto f = [](double, std::span<const double> yy, std::span<double> dy) { dy[0] = yy[1]; dy[1] = -yy[0]; };
+    s.advance(f, t, 1.0, y, p);
+    const double x1 = y[0], v1 = y[1] + 0.5;
+    y[1] = v1;
+    s.advance(f, t, 2.0, y, p);
+    // 1e-7: 2·tol a step over some hundred steps, far below the kick.
+    EXPECT_NEAR(y[0], x1 * std::cos(1.0) + v1 * std::sin(1.0), 1e-7) << to_string(m);
+    EXPECT_NEAR(y[1], -x1 * std::sin(1.0) + v1 * std::cos(1.0), 1e-7) << to_string(m);
+  }
+}
+
+TEST(OdePairs, AnAfterStepThatChangesStatesMakesTheSolverClip) {
+  // after_step puts the state back on the unit circle (as constraint projection
+  // does): every sample must be such a projected step end, never an
+  // interpolant between two of them.
+  std::vector<double> radii;
+  OdeSolver s(spec(SolverMethod::dopri5, 0.1, 1e-8), 2);
+  sampled_oscillator(s, 100, [](std::vector<double>& y) {
+    const double r = std::hypot(y[0], y[1]);
+    y[0] /= r;
+    y[1] /= r;
+    return true;
+  }, &radii);
+  for (double r : radii) EXPECT_NEAR(r, 1.0, 4e-16);  // a normalised pair of doubles: within 2 ulp of 1
+  EXPECT_GE(s.stats().steps_accepted, 100u);
+}
+
+TEST(OdePairs, FailuresAreClearErrors) {
+  for (SolverMethod m : kPairs) expect_step_size_underflow(m);
+  OdeSolver s(spec(SolverMethod::tsit5, 1e-3, 1e-12), 2);
+  s.set_step_budget(5);
+  try {
+    sampled_oscillator(s, 1, kLeaves);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the budget of 5 steps is spent"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

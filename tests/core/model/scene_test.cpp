@@ -54,9 +54,14 @@ TEST(Sha256, KnownDigests) {
 
 // ---- names -----------------------------------------------------------------------------
 TEST(SceneNames, SolverMethodsRoundTrip) {
-  for (auto m : {SolverMethod::euler, SolverMethod::rk4, SolverMethod::rk4_doubling,
-                 SolverMethod::cash_karp45, SolverMethod::symplectic_euler, SolverMethod::velocity_verlet})
+  for (auto m : {SolverMethod::euler, SolverMethod::rk4, SolverMethod::rk4_doubling, SolverMethod::cash_karp45,
+                 SolverMethod::bs3, SolverMethod::dopri5, SolverMethod::tsit5, SolverMethod::vern6, SolverMethod::vern7,
+                 SolverMethod::vern8, SolverMethod::vern9, SolverMethod::symplectic_euler, SolverMethod::velocity_verlet})
     EXPECT_EQ(solver_method_from_string(to_string(m)), m) << to_string(m);
+  // The names the loader and the command line offer, one per method, in order.
+  const auto names = solver_method_names();
+  ASSERT_EQ(names.size(), 13u);
+  for (auto name : names) EXPECT_EQ(to_string(*solver_method_from_string(name)), name);
   EXPECT_EQ(to_string(SolverMethod::cash_karp45), "cash_karp45");
   EXPECT_FALSE(solver_method_from_string("RK4").has_value());
   EXPECT_FALSE(solver_method_from_string("").has_value());
@@ -370,8 +375,8 @@ std::vector<BadCase> bad_cases() {
        {": /solver/method: expected one of euler, rk4", "got nothing"}},
       {"UnknownMethod",
        set("/solver/method", "rk5"),
-       {": /solver/method: expected one of euler, rk4, rk4_doubling, cash_karp45, symplectic_euler, "
-        "velocity_verlet, got \"rk5\""}},
+       {": /solver/method: expected one of euler, rk4, rk4_doubling, cash_karp45, bs3, dopri5, tsit5, vern6, "
+        "vern7, vern8, vern9, symplectic_euler, velocity_verlet, got \"rk5\""}},
       {"NegativeDt", set("/solver/dt", -1), {": /solver/dt: expected a number > 0, got -1"}},
       {"NegativeRelTol",
        set("/solver/rel_tol", -1e-9),
