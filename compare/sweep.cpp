@@ -207,6 +207,61 @@ void write_equal_accuracy(std::ostringstream& md, const std::vector<Row>& rows, 
      << table.str();
 }
 
+// Method against method on one state, the traditional backend's, which the
+// Boost.Odeint peers integrate too: at every decade E a peer reaches, each
+// method's time and derivative evaluations at E, and its time over each
+// peer's (the same interpolation as above).
+template <class Usable>
+void write_methods_against_peers(std::ostringstream& md, const std::vector<Row>& rows, Usable usable, Measure x) {
+  std::vector<std::string> methods, peers;
+  std::vector<std::vector<EqualAccuracyPoint>> cells;
+  for (const auto& r : rows) {
+    if (r.backend != "traditional" || !usable(r)) continue;
+    auto it = std::find(methods.begin(), methods.end(), r.solver);
+    if (it == methods.end()) {
+      methods.push_back(r.solver), cells.emplace_back();
+      if (is_peer(r.solver)) peers.push_back(r.solver);
+      it = methods.end() - 1;
+    }
+    // Derivative evaluations, not steps: the peers count only those, and
+    // they are the work a method's steps cost.
+    cells[static_cast<std::size_t>(it - methods.begin())].push_back({r.error, r.time, static_cast<double>(r.evals)});
+  }
+  if (peers.empty() || methods.size() < 2) return;
+  double lo = INFINITY, hi = 0;
+  for (std::size_t k = 0; k < methods.size(); ++k)
+    if (is_peer(methods[k]))
+      for (const auto& c : cells[k]) lo = std::min(lo, c.error), hi = std::max(hi, c.error);
+  if (!(lo > 0) || !(lo <= hi)) return;
+  std::ostringstream table;
+  int lines = 0;
+  for (int e = static_cast<int>(std::floor(std::log10(hi))); e >= static_cast<int>(std::ceil(std::log10(lo))); --e) {
+    const double level = std::pow(10.0, e);
+    std::vector<std::optional<EqualAccuracyPoint>> peer_at;
+    for (const auto& p : peers)
+      peer_at.push_back(cost_at_error(cells[static_cast<std::size_t>(std::find(methods.begin(), methods.end(), p) - methods.begin())], level));
+    for (std::size_t k = 0; k < methods.size(); ++k) {
+      const auto at = cost_at_error(cells[k], level);
+      if (!at) continue;
+      table << "| " << format_number("%.0e", level) << " | " << methods[k] << " | " << format_number("%.3g", 1e3 * at->time)
+            << " ms | " << format_number("%.0f", at->steps) << " |";
+      for (const auto& p : peer_at) table << " " << (p ? format_number("%.2f", at->time / p->time) : "–") << " |";
+      table << "\n";
+      ++lines;
+    }
+  }
+  if (lines == 0) return;
+  md << "\n## Method against method\n\nOn the traditional backend's state, which Boost.Odeint's steppers integrate "
+        "too: each method's median time and derivative evaluations to reach a "
+     << measure_words(x) << " error E at the end (interpolated as above), and its time over each peer's at the same E, "
+        "at every decade a peer reaches. The methods' own settings differ; the accuracy does not.\n\n| E ("
+     << measure_unit(x) << ") | method | time at E | f evals at E |";
+  for (const auto& p : peers) md << " time / " << p << " |";
+  md << "\n|---:|---|---:|---:|";
+  for (std::size_t k = 0; k < peers.size(); ++k) md << "---:|";
+  md << "\n" << table.str();
+}
+
 bool projection(const core::Scene& s) { return s.constraint_solver.drift == core::Drift::projection && !s.constraints.empty(); }
 }  // namespace
 
@@ -444,6 +499,7 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
         << r.steps << "," << r.evals << "," << csv_field(r.failure) << "\n";
   }
   write_equal_accuracy(md, rows, usable, x);
+  write_methods_against_peers(md, rows, usable, x);
   if (std::none_of(rows.begin(), rows.end(), usable))
     md << "\nNo cell has a " << words << " error above 0 and below the error of not simulating at all ("
        << format_number("%.2e", nothing) << " " << unit << "): there is no diagram to draw.\n";

@@ -461,6 +461,37 @@ TEST(Cli, SweepNamesTheSolversItKnows) {
 // A sweep of a rigid scene measures the four errors; its diagram is drawn on the
 // orientation error by default (the centre of a spinning body never moves, and
 // a position-only sweep read 0 in every cell) and on what --error names.
+// With the Boost.Odeint peers, sweep.md sets every method against each peer
+// on the traditional state at each error level a peer reaches: the peer
+// against itself reads 1.00, and every row has a ratio for each peer.
+TEST(Cli, SweepSetsEveryMethodAgainstThePeers) {
+  const fs::path dir = fresh_dir("sweep_peers");
+  ASSERT_EQ(gacompare("sweep " + std::string(GACOMPARE_DATA_DIR) +
+                      "/scenes/tumbling_box.json --solvers cash_karp45,tsit5 --tolerances 1e-4:1e-8 --repeat 1 "
+                      "--quiet --out " + dir.string())
+                .code,
+            0);
+  const std::string md = read_text(dir / "sweep.md");
+  const auto at = md.find("## Method against method");
+  ASSERT_NE(at, std::string::npos) << md;
+  const std::string section = md.substr(at);
+  EXPECT_NE(section.find("| time / odeint_cash_karp54 | time / odeint_dopri5 |"), std::string::npos) << section;
+  int rows = 0, selves = 0;
+  std::istringstream lines(section);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("| 1e-", 0) != 0) continue;
+    ++rows;
+    std::vector<std::string> cells;
+    std::istringstream c(line);
+    for (std::string cell; std::getline(c, cell, '|');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 7u) << line;  // "", E, method, time, evals, two ratios
+    if (cells[2] == " odeint_cash_karp54 ") selves += cells[5] == " 1.00 ";
+    if (cells[2] == " odeint_dopri5 ") selves += cells[6] == " 1.00 ";
+  }
+  EXPECT_GT(rows, 4) << section;
+  EXPECT_GE(selves, 2) << section;  // each peer against itself, at one level at least
+}
+
 TEST(Cli, SweepOfABodyMeasuresEveryErrorAndDrawsOrientation) {
   const std::string sweep = "sweep " + std::string(GACOMPARE_DATA_DIR) +
                             "/scenes/dzhanibekov.json --solvers rk4 --steps 1e-2:1 --no-peer --max-duration 2 "
