@@ -608,8 +608,12 @@ ForestPlot forest(const std::vector<PairSummaries>& pairs) {
 
 std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
                               double equal_accuracy) {
-  const SummaryParts p = summary_parts(results, summarise(results, equal_accuracy > 0), machine, repeats);
-  return p.head + p.answer + p.tables;
+  const std::vector<PairSummaries> pairs = summarise(results, equal_accuracy > 0);
+  const SummaryParts p = summary_parts(results, pairs, machine, repeats);
+  // The forest plot first, as in report.html: write_reports writes forest.svg beside this file.
+  const std::string figure =
+      forest(pairs).rows.empty() ? "" : "![Time ratios by category and stage, with 95% intervals](forest.svg)\n\n";
+  return p.head + figure + p.answer + p.tables;
 }
 
 std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
@@ -645,6 +649,8 @@ void write_reports(const std::filesystem::path& dir, const std::vector<SceneResu
   }
   for (const auto& r : results) write_scene(dir / file_name_for(r.scene.name), r);
   write_file_atomically(dir / "stages.csv", stage_csv(results));
+  if (const ForestPlot f = forest(summarise(results, equal_accuracy > 0)); !f.rows.empty())
+    write_file_atomically(dir / "forest.svg", render_svg(f));
   write_file_atomically(dir / "summary.json",
                         summary_json(summarise(results, equal_accuracy > 0), machine, repeats, equal_accuracy).dump(1) + "\n");
   write_file_atomically(dir / "report.md", summary_report_md(results, machine, repeats, equal_accuracy));

@@ -5,6 +5,7 @@ import glob
 import json
 import os
 import re
+import shutil
 
 from .common import ROOT
 
@@ -62,6 +63,11 @@ def generate(ctx):
     # commit is in the page's provenance.
     report = re.sub(r"\[([^\]]+)\]\([^)]*report\.md\)", r"\1", report)
     report = re.sub(r",? commit [0-9a-f]+(?: with uncommitted changes)?", "", report)
+    # The forest plot, beside the page's other figures.
+    if os.path.exists(os.path.join(out, "forest.svg")):
+        os.makedirs(os.path.join(ROOT, "docs", "results", "img"), exist_ok=True)
+        shutil.copyfile(os.path.join(out, "forest.svg"), os.path.join(ROOT, "docs", "results", "img", "summary_forest.svg"))
+        report = report.replace("](forest.svg)", "](img/summary_forest.svg)")
     return {"blocks": {"report": _demote(report)}, "headline": headline(summary)}
 
 

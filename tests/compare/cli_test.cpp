@@ -117,6 +117,10 @@ TEST(Cli, TheOverviewDrawsTheRigidScenesWorkPrecision) {
   const std::string html = read_text(out / "report.html");
   EXPECT_NE(html.find("tumbling_box: what accuracy costs in time"), std::string::npos);
   EXPECT_LT(html.find("id=\"forest\""), html.find("<table"));  // the answer before the tables
+  // report.md shows the same forest plot first, from the file beside it.
+  EXPECT_TRUE(fs::exists(out / "forest.svg"));
+  const std::string md = read_text(out / "report.md");
+  EXPECT_LT(md.find("](forest.svg)"), md.find("**Verdict"));
   const std::string sweep = read_text(out / "tumbling_box" / "work_precision" / "sweep.md");
   for (const char* b : {"| traditional |", "| traditional-quaternion |", "| cga |", "| pga |"})
     EXPECT_NE(sweep.find(b), std::string::npos) << b;
