@@ -52,13 +52,21 @@ std::string time_cell(const std::vector<double>& secs) {
   const Spread s = spread(secs);
   return format_seconds(s.median) + " (" + format_seconds(s.min) + "–" + format_seconds(s.max) + ")";
 }
-// "4.10 ms (4.09–4.17)": the unit once, so that a row of backends fits the page.
+// The unit a time reads best in: its scale and name (format_seconds' choice).
+struct TimeUnit {
+  double scale;
+  const char* name;
+};
+TimeUnit time_unit(double seconds) {
+  const double a = std::abs(seconds);
+  return a < 1e-6 ? TimeUnit{1e9, " ns"} : a < 1e-3 ? TimeUnit{1e6, " µs"} : a < 1 ? TimeUnit{1e3, " ms"} : TimeUnit{1, " s"};
+}
+// "4.10 ms (4.09–4.17)": the median's unit once, so that a row of backends fits the page.
 std::string compact_time_cell(const std::vector<double>& secs) {
   const Spread s = spread(secs);
-  const double a = std::abs(s.median);
-  const double scale = a < 1e-6 ? 1e9 : a < 1e-3 ? 1e6 : a < 1 ? 1e3 : 1;
-  const char* unit = a < 1e-6 ? " ns" : a < 1e-3 ? " µs" : a < 1 ? " ms" : " s";
-  return fmt("%.3g", s.median * scale) + unit + " (" + fmt("%.4g", s.min * scale) + "–" + fmt("%.4g", s.max * scale) + ")";
+  const TimeUnit u = time_unit(s.median);
+  return fmt("%.3g", s.median * u.scale) + u.name + " (" + fmt("%.4g", s.min * u.scale) + "–" +
+         fmt("%.4g", s.max * u.scale) + ")";
 }
 std::string ratio_cell(const Spread& s) {
   return fmt("%.2f", s.median) + " (" + fmt("%.2f", s.min) + "–" + fmt("%.2f", s.max) + ")";
@@ -100,11 +108,8 @@ std::string header(const MachineInfo& m, int repeats, std::span<const BackendPai
 
 std::string format_seconds(double s) {
   if (s == 0) return "0";
-  const double a = std::abs(s);
-  if (a < 1e-6) return fmt("%.3g ns", s * 1e9);
-  if (a < 1e-3) return fmt("%.3g µs", s * 1e6);
-  if (a < 1) return fmt("%.3g ms", s * 1e3);
-  return fmt("%.3g s", s);
+  const TimeUnit u = time_unit(s);
+  return fmt("%.3g", s * u.scale) + u.name;
 }
 
 std::string scene_report_md(const SceneResult& r, const MachineInfo& machine, int repeats) {
@@ -451,13 +456,13 @@ void verdict(std::ostringstream& o, const std::vector<PairSummaries>& pairs) {
       }
       if (s.trajectories == Trajectories::parted) parted.push_back(md_text(s.name));
       if (s.trajectories == Trajectories::own_settings) ++own;
-      if (s.trajectories == Trajectories::not_compared) not_compared.push_back(md_text(s.name + " (" + s.not_compared_why + ")"));
+      if (s.trajectories == Trajectories::not_compared && s.ran)
+        not_compared.push_back(md_text(s.name + " (" + s.not_compared_why + ")"));
     }
     // Scenes where one of the pair did not run at all (the quaternion twin on
     // a collision scene) are not counted: nothing was asked of them.
     std::size_t n = 0;
-    for (const auto& s : ps.scenes) n += s.not_compared_why.rfind("needs both", 0) != 0;
-    std::erase_if(not_compared, [](const std::string& t) { return t.find("(needs both") != std::string::npos; });
+    for (const auto& s : ps.scenes) n += s.ran;
     if (n == 0) continue;
     o << "- Trajectories of " << ps.pair.numerator << " against " << ps.pair.denominator << ": ";
     if (own)
@@ -548,7 +553,7 @@ SummaryParts summary_parts(const std::vector<SceneResult>& results, const std::v
   for (std::size_t i = 0; i < results.size(); ++i)
     for (const auto& ps : pairs) {
       const SceneSummary& s = ps.scenes[i];
-      if (s.trajectories == Trajectories::not_compared && s.not_compared_why.rfind("needs both", 0) == 0) continue;
+      if (!s.ran) continue;
       const bool compared_here = s.trajectories != Trajectories::not_compared;
       const std::string ratio =
           !compared_here ? "–"
@@ -606,23 +611,30 @@ ForestPlot forest(const std::vector<PairSummaries>& pairs) {
 }
 }  // namespace
 
-std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
-                              double equal_accuracy) {
-  const std::vector<PairSummaries> pairs = summarise(results, equal_accuracy > 0);
+namespace {
+// The forest plot's SVG ("" when no evidence category was compared), drawn
+// once per report folder: report.md links it as forest.svg, report.html
+// inlines it.
+std::string forest_svg(const std::vector<PairSummaries>& pairs) {
+  const ForestPlot f = forest(pairs);
+  return f.rows.empty() ? "" : render_svg(f);
+}
+
+std::string summary_md(const std::vector<SceneResult>& results, const std::vector<PairSummaries>& pairs,
+                       const MachineInfo& machine, int repeats, bool with_forest) {
   const SummaryParts p = summary_parts(results, pairs, machine, repeats);
-  // The forest plot first, as in report.html: write_reports writes forest.svg beside this file.
   const std::string figure =
-      forest(pairs).rows.empty() ? "" : "![Time ratios by category and stage, with 95% intervals](forest.svg)\n\n";
+      with_forest ? "![Time ratios by category and stage, with 95% intervals](forest.svg)\n\n" : "";
   return p.head + figure + p.answer + p.tables;
 }
 
-std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
-                                double equal_accuracy, const std::vector<Figure>& work_precision) {
-  const std::vector<PairSummaries> pairs = summarise(results, equal_accuracy > 0);
+std::string summary_html(const std::vector<SceneResult>& results, const std::vector<PairSummaries>& pairs,
+                         const MachineInfo& machine, int repeats, const std::string& forest,
+                         const std::vector<Figure>& work_precision) {
   const SummaryParts p = summary_parts(results, pairs, machine, repeats);
   std::string figures;
-  if (const ForestPlot f = forest(pairs); !f.rows.empty())
-    figures += "<figure id=\"forest\">" + inline_svg(render_svg(f)) +
+  if (!forest.empty())
+    figures += "<figure id=\"forest\">" + inline_svg(forest) +
                "<figcaption>Each row: a ratio of times over a category's scenes, weighted by time, with its 95% "
                "bootstrap interval over paired repeats; grey circles: the single scenes behind it. Left of the dashed "
                "line the first backend named is faster. Stages are shown for the first pair.</figcaption></figure>\n";
@@ -630,6 +642,19 @@ std::string summary_report_html(const std::vector<SceneResult>& results, const M
     figures += "<figure>" + inline_svg(w.svg) + "<figcaption>" + markdown_to_html(w.caption) + "</figcaption></figure>\n";
   return html_page("gacompare", markdown_to_html(p.head) + figures + markdown_to_html(p.answer) + markdown_to_html(p.tables),
                    "overview");
+}
+}  // namespace
+
+std::string summary_report_md(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
+                              double equal_accuracy) {
+  const std::vector<PairSummaries> pairs = summarise(results, equal_accuracy > 0);
+  return summary_md(results, pairs, machine, repeats, !forest(pairs).rows.empty());
+}
+
+std::string summary_report_html(const std::vector<SceneResult>& results, const MachineInfo& machine, int repeats,
+                                double equal_accuracy, const std::vector<Figure>& work_precision) {
+  const std::vector<PairSummaries> pairs = summarise(results, equal_accuracy > 0);
+  return summary_html(results, pairs, machine, repeats, forest_svg(pairs), work_precision);
 }
 
 void write_reports(const std::filesystem::path& dir, const std::vector<SceneResult>& results,
@@ -649,12 +674,13 @@ void write_reports(const std::filesystem::path& dir, const std::vector<SceneResu
   }
   for (const auto& r : results) write_scene(dir / file_name_for(r.scene.name), r);
   write_file_atomically(dir / "stages.csv", stage_csv(results));
-  if (const ForestPlot f = forest(summarise(results, equal_accuracy > 0)); !f.rows.empty())
-    write_file_atomically(dir / "forest.svg", render_svg(f));
-  write_file_atomically(dir / "summary.json",
-                        summary_json(summarise(results, equal_accuracy > 0), machine, repeats, equal_accuracy).dump(1) + "\n");
-  write_file_atomically(dir / "report.md", summary_report_md(results, machine, repeats, equal_accuracy));
-  write_file_atomically(dir / "report.html", summary_report_html(results, machine, repeats, equal_accuracy, work_precision));
+  // One summary and one forest plot for every file that shows them.
+  const std::vector<PairSummaries> pairs = summarise(results, equal_accuracy > 0);
+  const std::string forest = forest_svg(pairs);
+  if (!forest.empty()) write_file_atomically(dir / "forest.svg", forest);
+  write_file_atomically(dir / "summary.json", summary_json(pairs, machine, repeats, equal_accuracy).dump(1) + "\n");
+  write_file_atomically(dir / "report.md", summary_md(results, pairs, machine, repeats, !forest.empty()));
+  write_file_atomically(dir / "report.html", summary_html(results, pairs, machine, repeats, forest, work_precision));
 }
 
 }  // namespace gacompare::compare

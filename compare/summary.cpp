@@ -180,7 +180,8 @@ SceneSummary summarise_scene(const SceneResult& r, BackendPair pair, bool own_se
   if (s.bodies) s.numerator_form = representation(pair.numerator, r.scene), s.denominator_form = representation(pair.denominator, r.scene);
   const BackendResult* num = find_backend(r, pair.numerator);
   const BackendResult* den = find_backend(r, pair.denominator);
-  if (!num || !den) {
+  s.ran = num && den;
+  if (!s.ran) {
     s.not_compared_why = "needs both " + std::string(pair.denominator) + " and " + std::string(pair.numerator);
     return s;
   }

@@ -116,6 +116,7 @@ struct SceneSummary {
   // Solver steps (accepted and rejected) of each side's first repeat.
   std::uint64_t numerator_steps = 0, denominator_steps = 0;
   Trajectories trajectories = Trajectories::not_compared;
+  bool ran = false;  // both backends of the pair ran on the scene (to its end or not)
   std::string not_compared_why;  // set when trajectories == not_compared
   std::vector<StageTimes> stages;  // every stage either backend ran
 };
