@@ -14,7 +14,8 @@
 //   ratio     two cubes, 1 : 10^k both ways (k = 0 … 4: heavy on light, light
 //             on heavy); a plate of 10^k kg (k = 1 … 4) on three 1 kg cubes.
 //   friction  a card house (two plates leaning together, μ = 0.6); a row of
-//             ten upright dominoes (μ = 0.5).
+//             ten upright dominoes (μ = 0.5); the wall pyramid of 5 layers
+//             and the square one of 3 with μ = 0.5 on every face.
 //
 // Restitution 0.2, rk4 at 1 ms, collision step 1 ms, penetration tolerance
 // 1e-4 m (the settings a new user tries first); no friction but in the

@@ -8,6 +8,11 @@
 // progress on stderr.
 //
 //   build/ci/bench/stacking_table [--filter TEXT] [--columns traditional,cga,pga,bullet,traditional-pgs,cga-pgs,pga-pgs]
+//                                 [--duration SECONDS] [--counters NAME,NAME,...]
+//
+// --duration shortens every case's run (the verdict still holds each sample
+// to the answer); --counters prints those counters of every run on stderr,
+// for looking into a failing case.
 //
 // Default columns: traditional, cga, pga, bullet. A column is a backend with the
 // family's default contact solver (direct),
@@ -18,7 +23,9 @@
 #include "family_table.hpp"
 #include "core/error.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <string>
 #include <vector>
@@ -37,7 +44,9 @@ core::ContactSolverMethod method_of(const std::string& column) {
 }
 
 int usage() {
-  std::fprintf(stderr, "usage: stacking_table [--filter TEXT] [--columns traditional,cga,pga,bullet,traditional-pgs,cga-pgs,pga-pgs]\n");
+  std::fprintf(stderr,
+               "usage: stacking_table [--filter TEXT] [--columns traditional,cga,pga,bullet,traditional-pgs,cga-pgs,pga-pgs] "
+               "[--duration SECONDS] [--counters NAME,NAME,...]\n");
   return 2;
 }
 
@@ -45,6 +54,8 @@ int usage() {
 
 int main(int argc, char** argv) {
   std::string filter, command = "stacking_table";
+  double duration = 0;  // 0: each case's own
+  std::vector<std::string> shown;  // counters printed per run
   std::vector<std::string> columns{"traditional", "cga", "pga", "bullet"};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -53,6 +64,16 @@ int main(int argc, char** argv) {
     command += " " + arg + " " + value;
     if (arg == "--filter") {
       filter = value;
+    } else if (arg == "--duration") {
+      char* end = nullptr;
+      duration = std::strtod(value.c_str(), &end);
+      if (*end != '\0' || !(duration > 0)) return usage();
+    } else if (arg == "--counters") {
+      for (std::size_t at = 0; at <= value.size();) {
+        const std::size_t comma = std::min(value.find(',', at), value.size());
+        if (comma > at) shown.push_back(value.substr(at, comma - at));
+        at = comma + 1;
+      }
     } else if (arg == "--columns") {
       const auto list = bench::column_list(value, {"traditional", "cga", "pga", "bullet", "traditional-pgs", "cga-pgs", "pga-pgs"});
       if (!list) return usage();
@@ -61,8 +82,11 @@ int main(int argc, char** argv) {
       return usage();
     }
   }
-  const auto direct = core::stacking_family(core::ContactSolverMethod::direct);
-  const auto pgs = core::stacking_family(core::ContactSolverMethod::pgs);
+  auto direct = core::stacking_family(core::ContactSolverMethod::direct);
+  auto pgs = core::stacking_family(core::ContactSolverMethod::pgs);
+  if (duration > 0)
+    for (auto* family : {&direct, &pgs})
+      for (auto& c : *family) c.scene.duration = duration;
 
   std::printf("Command: `build/ci/bench/%s`\n\n", command.c_str());
   std::printf("Each cell: pass or FAIL, the worst error over its bound (≤ 1 passes), and the run's wall time per "
@@ -91,6 +115,10 @@ int main(int argc, char** argv) {
         const core::Run r = run(column, c.scene);
         seconds = r.wall_seconds;
         v = c.evaluate(r);
+        for (const auto& name : shown) {
+          const auto it = r.counters.find(name);
+          std::fprintf(stderr, "  %s %s\n", name.c_str(), it == r.counters.end() ? "(none)" : std::to_string(it->second).c_str());
+        }
       } catch (const Error& e) {
         v.pass = false, v.ratio = INFINITY, v.worst = std::string("refused: ") + e.what();
       }

@@ -18,7 +18,7 @@ enum class State : char { free, lower, upper, fixed };  // fixed: lo = hi
 class FreeSystem {
  public:
   FreeSystem(const Eigen::SparseMatrix<double>& a, const std::vector<Eigen::Index>& rows,
-             const std::vector<Eigen::Index>& free, double delta, int dense_up_to)
+             const std::vector<Eigen::Index>& free, const Eigen::VectorXd& delta, int dense_up_to)
       : n_(static_cast<Eigen::Index>(rows.size())), dense_(n_ <= dense_up_to) {
     std::vector<Eigen::Triplet<double>> t;
     for (Eigen::Index k = 0; k < n_; ++k)
@@ -27,7 +27,7 @@ class FreeSystem {
     a_ff_.resize(n_, n_);
     a_ff_.setFromTriplets(t.begin(), t.end());
     Eigen::SparseMatrix<double> reg = a_ff_;
-    for (Eigen::Index k = 0; k < n_; ++k) reg.coeffRef(k, k) += delta;
+    for (Eigen::Index k = 0; k < n_; ++k) reg.coeffRef(k, k) += delta[rows[static_cast<std::size_t>(k)]];
     if (dense_) {
       dense_ldlt_.compute(Eigen::MatrixXd(reg));
     } else {
@@ -94,7 +94,8 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
   double dmax = 0;
   Eigen::VectorXd diag(n);
   for (Eigen::Index i = 0; i < n; ++i) diag[i] = p.A.coeff(i, i), dmax = std::max(dmax, diag[i]);
-  const double delta = 1e-10 * dmax;
+  const Eigen::VectorXd delta =
+      1e-10 * dmax * (p.weight.size() == n ? p.weight : Eigen::VectorXd(Eigen::VectorXd::Ones(n)));
   // A feasible start: the warm start held within its bounds; a row on a bound
   // starts there, every other row free.
   std::vector<State> state(static_cast<std::size_t>(n));
@@ -159,7 +160,7 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
     }
     // At the free rows' minimiser: release every row a bound holds against
     // the gradient (w of the regularised problem); none, and this is the answer.
-    const Eigen::VectorXd w = p.A * lambda + p.b + delta * lambda;
+    const Eigen::VectorXd w = p.A * lambda + p.b + delta.cwiseProduct(lambda);
     bool released = false;
     for (Eigen::Index i = 0; i < n; ++i) {
       auto& st = state[static_cast<std::size_t>(i)];

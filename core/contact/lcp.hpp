@@ -27,7 +27,8 @@
 // A is singular whenever rows are redundant (the four corners of a face have
 // three degrees of freedom between them): then the answer's λ is not unique
 // and the free rows' system is singular. So the active set is found for
-// A + δI, δ a 1e-10 of A's largest diagonal: positive definite, a unique
+// A + δW, δ a 1e-10 of A's largest diagonal and W the rows' weights (1 unless
+// the problem says otherwise): positive definite, a unique
 // answer, every free system invertible. Its free rows' impulses are then refined against
 // A itself (the regularisation's δλ taken out of their velocities): on the
 // consistent part the refinement converges like δ/σ per step (σ the smallest
@@ -43,6 +44,11 @@ namespace gacompare::core::contact {
 struct Blcp {
   Eigen::SparseMatrix<double> A;  // symmetric, both triangles stored
   Eigen::VectorXd b, lo, hi;
+  // Each row's share of the regularisation, δ_i = weight_i δ (empty: 1 for
+  // every row). Where λ is not unique, the answer found is the one of least
+  // Σ weight_i λ_i² among the exact answers: a heavier weight keeps a row out
+  // of the answer wherever the others can carry it.
+  Eigen::VectorXd weight;
 };
 
 struct BlcpSettings {

@@ -166,6 +166,31 @@ TEST(Blcp, RedundantFaceRowsStopEveryCorner) {
   EXPECT_GE(lambda.minCoeff(), 0.0);
 }
 
+// Two rows along the same line (a redundant pair, A = [1 1; 1 1]) must carry
+// one unit of impulse between them: every split λ1 + λ2 = 1 is exact. With
+// weights (1, w) the regularised problem picks the least Σ w_i λ_i², the split
+// λ_i ∝ 1 / w_i (Lagrange), so the heavy row carries 1/(1 + w): how the
+// contact solver keeps friction out of a stack's answer wherever the normal
+// rows can carry it. The split is the regularisation's, kept exactly by the
+// refinement (it lies in A's null space); the velocity is exact.
+TEST(Blcp, WeightsChooseTheLeastWeightedAnswer) {
+  Blcp p;
+  p.A = sparse((Eigen::MatrixXd(2, 2) << 1, 1, 1, 1).finished());
+  p.b = Eigen::Vector2d(-1, -1);
+  p.lo = Eigen::VectorXd::Constant(2, -kInf);
+  p.hi = Eigen::VectorXd::Constant(2, kInf);
+  for (const double w : {1.0, 1e4}) {
+    p.weight = Eigen::Vector2d(1, w);
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(2);
+    ASSERT_TRUE(solve_blcp(p, lambda, {}).solved);
+    EXPECT_NEAR(lambda.sum(), 1.0, 1e-12) << "w = " << w;
+    // 1e-6 relative: the split comes from factorising A + δW, whose
+    // condition number is about 2/δ = 2e10, so rounding (1e-16) can move it
+    // by ~1e-6 of itself; measured 8e-8 at w = 1e4.
+    EXPECT_NEAR(lambda[1], 1 / (1 + w), 1e-6 / (1 + w)) << "w = " << w;
+  }
+}
+
 // A problem larger than the dense limit goes through the sparse factorisation
 // and gives the same answer as the dense one.
 TEST(Blcp, SparseAndDenseAgree) {
