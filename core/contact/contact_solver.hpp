@@ -383,9 +383,16 @@ class ContactSolver {
       // couples nothing), each solved on its own: smaller factorisations, and a
       // pair's answer does not depend on an unrelated body that shares its island.
       std::vector<Eigen::Index> local(static_cast<std::size_t>(n), -1);
-      for (const std::vector<Eigen::Index>& group : groups_of(lines, moving)) {
+      const std::vector<std::vector<Eigen::Index>> groups = groups_of(lines, moving);
+      for (const std::vector<Eigen::Index>& group : groups) {
         const auto m = static_cast<Eigen::Index>(group.size());
         for (Eigen::Index i = 0; i < m; ++i) local[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])] = i;
+        if (groups.size() == 1) {  // one group holds every line, in order: the problem itself
+          Eigen::VectorXd x = lambda;
+          solve_group(p, x, rows, group, local, normal_of, nr, frictions, how, solved);
+          lambda = x;
+          break;
+        }
         contact::Blcp g;
         std::vector<Eigen::Triplet<double>> t;
         for (const Eigen::Index k : group)

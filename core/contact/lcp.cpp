@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <span>
+#include <vector>
 
 namespace gacompare::core::contact {
 
@@ -31,7 +33,7 @@ class FreeSystem {
     if (dense_) {
       dense_ldlt_.compute(Eigen::MatrixXd(reg));
     } else {
-      sparse_ldlt_.compute(reg);
+      sparse().factorise(reg);
     }
   }
 
@@ -54,13 +56,36 @@ class FreeSystem {
 
  private:
   Eigen::VectorXd once(const Eigen::VectorXd& r) const {
-    return dense_ ? Eigen::VectorXd(dense_ldlt_.solve(r)) : Eigen::VectorXd(sparse_ldlt_.solve(r));
+    return dense_ ? Eigen::VectorXd(dense_ldlt_.solve(r)) : Eigen::VectorXd(sparse().ldlt.solve(r));
   }
   Eigen::Index n_;
   bool dense_;
   Eigen::SparseMatrix<double> a_ff_;
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> sparse_ldlt_;
+
+  // The sparse factorisation, kept from one factorisation to the next on
+  // this thread: its ordering (AMD) and elimination tree depend only on the
+  // free rows' pattern, which the next factorisation (the next active set,
+  // the next step's solve of the same stack) usually shares, and finding
+  // them cost as much as the numeric factorisation of a 20-cube column.
+  // One FreeSystem is in use at a time on a thread (solve_blcp's latest).
+  struct SparseFactor {
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+    std::vector<int> outer, inner;  // the pattern analysed
+    void factorise(const Eigen::SparseMatrix<double>& m) {
+      const std::span<const int> o(m.outerIndexPtr(), static_cast<std::size_t>(m.outerSize()) + 1);
+      const std::span<const int> in(m.innerIndexPtr(), static_cast<std::size_t>(m.nonZeros()));
+      if (!std::ranges::equal(o, outer) || !std::ranges::equal(in, inner)) {
+        ldlt.analyzePattern(m);
+        outer.assign(o.begin(), o.end()), inner.assign(in.begin(), in.end());
+      }
+      ldlt.factorize(m);
+    }
+  };
+  static SparseFactor& sparse() {
+    thread_local SparseFactor factor;
+    return factor;
+  }
 };
 
 double tolerance_of(const Blcp& p, const BlcpSettings& s) {
