@@ -414,6 +414,20 @@ std::vector<SweepCell> run_units(const core::Scene& swept, const SweepSpec& spec
   return out;
 }
 
+std::string_view method_family(std::string_view solver) {
+  using core::SolverMethod;
+  const auto m = core::solver_method_from_string(solver);
+  if (!m) return "Odeint";
+  switch (*m) {
+    case SolverMethod::euler: case SolverMethod::rk4: case SolverMethod::rk4_doubling: case SolverMethod::cash_karp45:
+      return "classical";
+    case SolverMethod::symplectic_euler: case SolverMethod::velocity_verlet:
+      return "symplectic";
+    default:
+      return "PI pairs";
+  }
+}
+
 void write_sweep_report(const std::filesystem::path& dir, const core::Scene& scene,
                         const std::vector<SweepCell>& units, const SweepSpec& spec) {
   const Measure x = spec.error.value_or(default_error(scene));
@@ -519,22 +533,44 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
     if (std::find(methods.begin(), methods.end(), r.solver) == methods.end()) methods.push_back(r.solver);
     if (std::find(backends.begin(), backends.end(), r.backend) == backends.end()) backends.push_back(r.backend);
   }
+  // By family: a curve's methods are its family's, its cells the ones no
+  // cell of the same backend and family beats in both error and time.
+  const auto group = [&](const Row& r) { return spec.by_family ? std::string(method_family(r.solver)) : r.solver; };
+  const auto best_of_group = [&](const Row& r) {
+    for (const auto& o : rows)
+      if (&o != &r && usable(o) && o.backend == r.backend && group(o) == group(r) && o.error <= r.error &&
+          o.time <= r.time && (o.error < r.error || o.time < r.time))
+        return false;
+    return true;
+  };
+  if (spec.by_family) {
+    methods.clear();
+    for (const auto& r : rows)
+      if (usable(r) && std::find(methods.begin(), methods.end(), group(r)) == methods.end()) methods.push_back(group(r));
+  }
   for (const auto& r : rows) {
-    const std::string title = r.solver + " (" + r.backend + ")";
+    const std::string title = group(r) + " (" + r.backend + ")";
     auto it = std::find_if(p.series.begin(), p.series.end(), [&](const Series& s) { return s.title == title; });
     if (it == p.series.end()) {
       Series s{title, {}, {}, false};
       s.colour = backend_colour(r.backend);
-      s.marker = method_marker(static_cast<std::size_t>(std::find(methods.begin(), methods.end(), r.solver) - methods.begin()));
+      s.marker = method_marker(static_cast<std::size_t>(std::find(methods.begin(), methods.end(), group(r)) - methods.begin()));
       s.in_key = false;
       it = p.series.insert(p.series.end(), s);
     }
-    if (!usable(r)) continue;
+    if (!usable(r) || (spec.by_family && !best_of_group(r))) continue;
     it->x.push_back(r.error);
     it->y.push_back(r.time);
     if (pareto(r)) front.emplace_back(r.error, r.time);
   }
   std::erase_if(p.series, [](const Series& s) { return s.x.empty(); });
+  if (spec.by_family)  // a family's cells come from several methods: along the error
+    for (auto& s : p.series) {
+      std::vector<std::pair<double, double>> xy;
+      for (std::size_t k = 0; k < s.x.size(); ++k) xy.emplace_back(s.x[k], s.y[k]);
+      std::sort(xy.begin(), xy.end());
+      for (std::size_t k = 0; k < xy.size(); ++k) s.x[k] = xy[k].first, s.y[k] = xy[k].second;
+    }
   for (const auto& b : backends) {
     Series k{b, {}, {}, false};
     k.colour = backend_colour(b), k.key_only = true;

@@ -48,8 +48,18 @@ struct SweepSpec {
   double max_duration = 0;        // > 0: cut the scene to this duration
   bool peer = true;               // Boost.Odeint's Cash–Karp and Dormand–Prince, where the scene has no projection
   std::optional<Measure> error;   // the diagram's x-axis; nullopt: default_error(scene)
+  // The diagram draws one curve per backend and family of methods (the
+  // report's), its best cells: those no other cell of the same backend and
+  // family beats in both error and time. The table keeps every cell.
+  bool by_family = false;
   std::string build;              // the commit of the build that runs the cells (cell_key)
 };
+
+// A method's family, as the diagrams group them: "classical" (Euler, RK4,
+// RK4 with step doubling, Cash–Karp, with an I step controller), "PI pairs"
+// (Bogacki–Shampine, Dormand–Prince, Tsitouras, Verner, with a PI
+// controller), "symplectic", or "Odeint" for the Boost peers.
+std::string_view method_family(std::string_view solver);
 
 // One number through a printf format ("%.3g"), as the reports write them.
 std::string format_number(const char* printf_format, double x);

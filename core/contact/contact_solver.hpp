@@ -245,12 +245,13 @@ class ContactSolver {
                  std::span<Friction> frictions = {}) const {
       if (rows.empty()) return 0;
       ++counters.solves;
+      double last = 0;  // the last sweep's largest change: the residual at a capped exit
       for (int sweep = 0;; ++sweep) {
         double worst = 0;
         if (sweep == kMaxSweeps) {
           ++cap_hits;
           counters.add_sweeps(sweep);
-          return worst;
+          return last;
         }
         ++counters.sweeps;
         for (auto& r : rows) {
@@ -266,6 +267,7 @@ class ContactSolver {
           counters.add_sweeps(sweep + 1);
           return worst;
         }
+        last = worst;
       }
     }
 

@@ -124,6 +124,13 @@ TEST(Cli, TheOverviewDrawsTheRigidScenesWorkPrecision) {
   const std::string sweep = read_text(out / "tumbling_box" / "work_precision" / "sweep.md");
   for (const char* b : {"| traditional |", "| traditional-quaternion |", "| cga |", "| pga |"})
     EXPECT_NE(sweep.find(b), std::string::npos) << b;
+  // Every method is in the table; the diagram draws each backend's best of
+  // each family, and its key names the families, not the methods.
+  for (const char* m : {"| cash_karp45 |", "| tsit5 |", "| vern8 |"}) EXPECT_NE(sweep.find(m), std::string::npos) << m;
+  const std::string svg = read_text(out / "tumbling_box" / "work_precision" / "tumbling_box_work_precision.svg");
+  EXPECT_NE(svg.find("classical"), std::string::npos);
+  EXPECT_NE(svg.find("PI pairs"), std::string::npos);
+  EXPECT_EQ(svg.find("vern8"), std::string::npos);
   r = gacompare("compare " + scenes + " --repeat 1 --quiet --no-work-precision --out " + bare.string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_FALSE(fs::exists(bare / "tumbling_box" / "work_precision"));
