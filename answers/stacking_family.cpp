@@ -45,6 +45,12 @@ std::string cat(const Parts&... parts) {
   return out;
 }
 
+std::string format_mu(double mu) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", mu);
+  return text;
+}
+
 std::string name_of(std::string_view kind, std::string_view what, long n) {
   std::string out(kind);
   out += '/', out += what;
@@ -158,7 +164,7 @@ StackCase pyramid(ContactSolverMethod method, int layers, bool square, double mu
   }
   StackCase c = b.done(cat(square ? "A square" : "A wall", " pyramid of ", std::to_string(layers), " layers (",
                            std::to_string(count), " cubes, 2 cm apart in each row, each on ", square ? "four" : "two",
-                           " below), each layer dropped 1 mm", mu > 0 ? ", friction 0.5 on every face" : ", frictionless",
+                           " below), each layer dropped 1 mm", mu > 0 ? cat(", friction ", format_mu(mu), " on every face") : ", frictionless",
                            ": every cube comes to rest where it was placed"));
   // Without friction nothing stops a sideways velocity: the ~1e-5 m/s the
   // landings leave carries the upper layers past the drift bound.

@@ -13,14 +13,19 @@
 namespace gacompare::bench {
 
 // A comma-separated list whose every item is one of `allowed`; nullopt otherwise.
-inline std::optional<std::vector<std::string>> column_list(const std::string& value,
-                                                           const std::vector<std::string>& allowed) {
+// The names of a comma-separated list, in order.
+inline std::vector<std::string> comma_list(const std::string& value) {
   std::vector<std::string> out;
   std::stringstream list(value);
-  for (std::string c; std::getline(list, c, ',');) {
+  for (std::string c; std::getline(list, c, ',');) out.push_back(c);
+  return out;
+}
+
+inline std::optional<std::vector<std::string>> column_list(const std::string& value,
+                                                           const std::vector<std::string>& allowed) {
+  std::vector<std::string> out = comma_list(value);
+  for (const auto& c : out)
     if (std::find(allowed.begin(), allowed.end(), c) == allowed.end()) return std::nullopt;
-    out.push_back(c);
-  }
   return out;
 }
 

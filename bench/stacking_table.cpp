@@ -23,7 +23,6 @@
 #include "family_table.hpp"
 #include "core/error.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -69,11 +68,7 @@ int main(int argc, char** argv) {
       duration = std::strtod(value.c_str(), &end);
       if (*end != '\0' || !(duration > 0)) return usage();
     } else if (arg == "--counters") {
-      for (std::size_t at = 0; at <= value.size();) {
-        const std::size_t comma = std::min(value.find(',', at), value.size());
-        if (comma > at) shown.push_back(value.substr(at, comma - at));
-        at = comma + 1;
-      }
+      shown = bench::comma_list(value);
     } else if (arg == "--columns") {
       const auto list = bench::column_list(value, {"traditional", "cga", "pga", "bullet", "traditional-pgs", "cga-pgs", "pga-pgs"});
       if (!list) return usage();

@@ -528,11 +528,6 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
   // what each colour and each marker means, not every combination of them.
   std::vector<std::pair<double, double>> front;
   std::vector<std::string> methods, backends;
-  for (const auto& r : rows) {
-    if (!usable(r)) continue;
-    if (std::find(methods.begin(), methods.end(), r.solver) == methods.end()) methods.push_back(r.solver);
-    if (std::find(backends.begin(), backends.end(), r.backend) == backends.end()) backends.push_back(r.backend);
-  }
   // By family: a curve's methods are its family's, its cells the ones no
   // cell of the same backend and family beats in both error and time.
   const auto group = [&](const Row& r) { return spec.by_family ? std::string(method_family(r.solver)) : r.solver; };
@@ -543,10 +538,10 @@ void write_sweep_report(const std::filesystem::path& dir, const core::Scene& sce
         return false;
     return true;
   };
-  if (spec.by_family) {
-    methods.clear();
-    for (const auto& r : rows)
-      if (usable(r) && std::find(methods.begin(), methods.end(), group(r)) == methods.end()) methods.push_back(group(r));
+  for (const auto& r : rows) {  // methods: the curves' methods, or families
+    if (!usable(r)) continue;
+    if (std::find(methods.begin(), methods.end(), group(r)) == methods.end()) methods.push_back(group(r));
+    if (std::find(backends.begin(), backends.end(), r.backend) == backends.end()) backends.push_back(r.backend);
   }
   for (const auto& r : rows) {
     const std::string title = group(r) + " (" + r.backend + ")";

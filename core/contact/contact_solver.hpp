@@ -31,7 +31,8 @@
 //
 // Coulomb friction (beyond the report, whose response is
 // frictionless): only for pairs with μ = √(μ_a μ_b) > 0, two tangent rows per
-// contact in the same Gauss–Seidel, held in the disc |λ_t| ≤ μ λ_n and warm
+// contact in the same Gauss–Seidel, held in the disc |λ_t| ≤ μ λ̄_n (λ̄_n its
+// pair's mean normal impulse, friction_limit) and warm
 // started (Friction below), and resting contacts displaced by ½ h of their
 // impulses' velocity change (friction_displacement). With μ = 0 no friction
 // row exists and every run is as before, bit for bit.
@@ -70,8 +71,9 @@ inline constexpr int kMaxSweeps = 1000;
 // 0.59 and 0.78 s of run time (traditional; warm starting keeps it to
 // ~35 sweeps a step).
 inline constexpr double kVelocityTolerance = 1e-11;
-// The direct solve's rounds of friction bounds (±μ λ_n from the normal
-// impulses of the round before); the sweeps after it finish what is left.
+// The direct solve's rounds of friction bounds (±μ λ̄_n from the normal
+// impulses of the round before, friction_limit); the sweeps after it finish
+// what is left.
 inline constexpr int kFrictionRounds = 8;
 // The friction rows' weight in the direct solve's regularisation (lcp.hpp):
 // among the impulses that give the same velocities (a face's corners, a body
@@ -140,7 +142,7 @@ class ContactSolver {
     };
     // Coulomb friction at one contact: two rows along the tangents
     // t[0], t[1] of the contact plane, their accumulated impulses λ_t held in the
-    // disc |λ_t| ≤ μ λ_n of the contact's accumulated normal impulse. A disc, not
+    // disc |λ_t| ≤ μ λ̄_n of its pair's mean normal impulse (friction_limit). A disc, not
     // a pyramid: the cone is isotropic, so the friction a sliding body feels does
     // not depend on how its sliding lines up with the basis (a four-sided pyramid
     // |λ_1|, |λ_2| ≤ μ λ_n lets a body sliding at 45° to t[0] feel √2 μ). t[0] is
@@ -166,10 +168,16 @@ class ContactSolver {
     // every step. The pair's load is determined, and a face that slides still
     // feels μ times its whole load. (The report has no friction; this is
     // the patch friction of PhysX, kept at the points.)
-    static double friction_limit(const Friction& f, const std::vector<Row>& rows) {
+    // `normal(k)` is normal row k's impulse: the rows' own, or a direct
+    // solve's impulses of this round.
+    template <class Normal>
+    static double friction_limit(const Friction& f, Normal normal) {
       double sum = 0;
-      for (std::size_t k = f.pair_begin; k < f.pair_end; ++k) sum += rows[k].lambda;
+      for (std::size_t k = f.pair_begin; k < f.pair_end; ++k) sum += normal(k);
       return f.mu * std::max(0.0, sum) / static_cast<double>(f.pair_end - f.pair_begin);
+    }
+    static double friction_limit(const Friction& f, const std::vector<Row>& rows) {
+      return friction_limit(f, [&](std::size_t k) { return rows[k].lambda; });
     }
     static double normal_velocity(const Row& r, const Motions& of) {
       return Bodies::normal_velocity(of[r.sb], r.arm_b, r.n) - Bodies::normal_velocity(of[r.sa], r.arm_a, r.n);
@@ -210,8 +218,8 @@ class ContactSolver {
     }
 
     // One Gauss–Seidel update of a contact's friction: each row's impulse to
-    // stop its slip, then the pair projected onto the disc |λ_t| ≤ μ λ_n, λ_n
-    // the normal row's accumulated impulse (static friction inside the disc,
+    // stop its slip, then the pair projected onto the disc |λ_t| ≤ μ λ̄_n, λ̄_n
+    // its pair's mean accumulated normal impulse (static friction inside the disc,
     // dynamic on its rim). Returns the largest velocity change.
     static double relax(const std::vector<Row>& rows, Friction& f, Motions& motion) {
       const Row& r = rows[f.row];
@@ -347,8 +355,8 @@ class ContactSolver {
     }
     // The rows' complementarity problem solved at once: every row's impulse
     // λ ≥ 0 and velocity ≥ its target, one of them tight; friction rows in the
-    // box ±μ λ_n of the normal impulses found (solved again until those
-    // settle, at most kFrictionRounds times). Starts from the impulses the
+    // box ±μ λ̄_n of the normal impulses found (solve_group: solved again
+    // until those settle, at most kFrictionRounds times). Starts from the impulses the
     // rows hold (warm starting) and leaves their new values pushed into
     // `motion`; the sweeps that follow then hold friction in its disc and
     // meet `converged` (a converged solve leaves them one sweep to check).
@@ -376,11 +384,6 @@ class ContactSolver {
       Eigen::VectorXd lambda = held;
       contact::BlcpSettings how;
       how.velocity_tolerance = converged;
-      std::vector<Eigen::Index> normal_of(static_cast<std::size_t>(n), -1);  // a friction line's normal row
-      for (std::size_t q = 0; q < frictions.size(); ++q)
-        for (int d = 0; d < 2; ++d)
-          normal_of[static_cast<std::size_t>(nr + static_cast<Eigen::Index>(2 * q) + d)] =
-              static_cast<Eigen::Index>(frictions[q].row);
       // The lines fall into groups that share no moving body (a static body
       // couples nothing), each solved on its own: smaller factorisations, and a
       // pair's answer does not depend on an unrelated body that shares its island.
@@ -391,7 +394,7 @@ class ContactSolver {
         for (Eigen::Index i = 0; i < m; ++i) local[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])] = i;
         if (groups.size() == 1) {  // one group holds every line, in order: the problem itself
           Eigen::VectorXd x = lambda;
-          solve_group(p, x, rows, group, local, normal_of, nr, frictions, how, solved);
+          solve_group(p, x, group, local, nr, frictions, how, solved);
           lambda = x;
           break;
         }
@@ -404,7 +407,7 @@ class ContactSolver {
         g.A.setFromTriplets(t.begin(), t.end());
         g.b = p.b(group), g.lo = p.lo(group), g.hi = p.hi(group), g.weight = p.weight(group);
         Eigen::VectorXd x = lambda(group);
-        solve_group(g, x, rows, group, local, normal_of, nr, frictions, how, solved);
+        solve_group(g, x, group, local, nr, frictions, how, solved);
         lambda(group) = x;
       }
       for (Eigen::Index k = 0; k < nr; ++k) {
@@ -425,31 +428,19 @@ class ContactSolver {
     // the normal impulses of the round before (friction_limit: its pair's
     // mean), solved again until the bounds of the rows that reach them
     // settle, at most kFrictionRounds times.
-    void solve_group(contact::Blcp& g, Eigen::VectorXd& x, const std::vector<Row>& rows,
-                     const std::vector<Eigen::Index>& group, const std::vector<Eigen::Index>& local,
-                     const std::vector<Eigen::Index>& normal_of, Eigen::Index nr, const std::vector<Friction>& frictions,
+    void solve_group(contact::Blcp& g, Eigen::VectorXd& x, const std::vector<Eigen::Index>& group,
+                     const std::vector<Eigen::Index>& local, Eigen::Index nr, const std::vector<Friction>& frictions,
                      const contact::BlcpSettings& how, bool& solved) const {
       struct Rub {
-        Eigen::Index at;    // a friction line (local)
-        std::size_t pair;   // its pair's normal rows (local lines) in `pairs`
-        double mu;
+        Eigen::Index at;  // a friction line (local)
+        const Friction* f;
       };
       std::vector<Rub> rubs;
-      std::vector<std::vector<Eigen::Index>> pairs;
-      std::unordered_map<std::size_t, std::size_t> pair_of;  // pair (hit) → pairs
-      const auto m = static_cast<Eigen::Index>(group.size());
-      for (Eigen::Index i = 0; i < m; ++i) {
-        const Eigen::Index line = group[static_cast<std::size_t>(i)], normal = normal_of[static_cast<std::size_t>(line)];
-        if (normal < 0) continue;
-        const auto [it, fresh] = pair_of.emplace(rows[static_cast<std::size_t>(normal)].hit, pairs.size());
-        if (fresh) pairs.emplace_back();
-        if ((line - nr) % 2 == 0) pairs[it->second].push_back(local[static_cast<std::size_t>(normal)]);
-        rubs.push_back({i, it->second, frictions[static_cast<std::size_t>((line - nr) / 2)].mu});
-      }
-      const auto limit_of = [&](const Rub& u) {  // friction_limit, on this round's impulses
-        double sum = 0;
-        for (const Eigen::Index k : pairs[u.pair]) sum += x[k];
-        return u.mu * std::max(0.0, sum) / static_cast<double>(pairs[u.pair].size());
+      for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(group.size()); ++i)
+        if (const Eigen::Index line = group[static_cast<std::size_t>(i)]; line >= nr)
+          rubs.push_back({i, &frictions[static_cast<std::size_t>((line - nr) / 2)]});
+      const auto limit_of = [&](const Rub& u) {
+        return friction_limit(*u.f, [&](std::size_t k) { return x[local[k]]; });
       };
       for (int round = 0; round < kFrictionRounds; ++round) {
         // How far the bounds of the rows on them moved (as velocity: Δbound
@@ -486,7 +477,7 @@ class ContactSolver {
     // one's (a resting contact's impulse is its load times the step). A stack
     // then needs a sweep or two per step, not a fresh solve through every box.
     // A friction row starts from the remembered friction impulse's parts along
-    // its tangents, held in the disc of its warm-started normal impulse.
+    // its tangents, held in the disc of its pair's warm-started normal impulses.
     void warm_start(std::vector<Row>& rows, std::vector<Friction>& frictions, Motions& motion, double dt) const {
       if (cache_.empty() || !(dt > 0)) return;
       std::vector<const Cached*> found(rows.size(), nullptr);  // each row's remembered impulses
