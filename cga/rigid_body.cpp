@@ -79,12 +79,13 @@ void RigidBodies::initial_state(const Model& m, std::span<double> y) {
   std::copy(m.y0.begin(), m.y0.end(), y.begin());
 }
 
-void RigidBodies::derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt) {
+void RigidBodies::derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
+                             std::span<const char> asleep) {
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const Body& body = m.bodies[b];
     const Layout at = layout(b);
     std::fill(dydt.begin() + static_cast<long>(at.x), dydt.begin() + static_cast<long>(at.x + Model::stride), 0.0);
-    if (body.inv_mass == 0) continue;  // static: never moves
+    if (body.inv_mass == 0 || (!asleep.empty() && asleep[b])) continue;  // static or asleep: does not move
     const Vector3 v = body.inv_mass * vec_at(y, at.p);
     const Rotor3 r = rotor_at(y, at.rot);
     // Ω_body from the normalised rotor. With R itself, R̃ L R and
@@ -269,6 +270,13 @@ void RigidBodies::store(const Model& m, std::span<double> y, std::size_t b, cons
   const Layout at = layout(b);
   put(y, at.p, vec_at(y, at.p) + motion.impulse);
   put(y, at.l, biv_at(y, at.l) + motion.angular_impulse);
+}
+
+void RigidBodies::stop(const Model& m, std::span<double> y, std::size_t b) {
+  if (m.bodies[b].inv_mass == 0) return;
+  const Layout at = layout(b);
+  put(y, at.p, Vector3{});
+  put(y, at.l, Bivector3{});
 }
 
 void RigidBodies::displace(const Model& m, std::span<double> y, std::size_t b, const Motion& pseudo) {

@@ -77,13 +77,14 @@ void RigidBodies::initial_state(const Model& m, std::span<double> y) {
   std::copy(m.y0.begin(), m.y0.end(), y.begin());
 }
 
-void RigidBodies::derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt) {
+void RigidBodies::derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
+                             std::span<const char> asleep) {
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const Body& body = m.bodies[b];
     const Layout at = layout(b);
     std::fill(dydt.begin() + static_cast<long>(at.motor), dydt.begin() + static_cast<long>(at.motor + Model::stride),
               0.0);
-    if (body.inv_mass == 0) continue;  // static: never moves
+    if (body.inv_mass == 0 || (!asleep.empty() && asleep[b])) continue;  // static or asleep: does not move
     const Motor mo = motor_at(y, at.motor);
     const Mat r = rotation_matrix(mo);  // exact for a drifted motor (cl301.hpp)
     const Line momentum = line_at(y, at.momentum);
@@ -260,6 +261,12 @@ void RigidBodies::store(const Model& m, std::span<double> y, std::size_t b, cons
   if (m.bodies[b].inv_mass == 0) return;
   const Layout at = layout(b);
   put(y, at.momentum, line_at(y, at.momentum) + motion.impulse);
+}
+
+void RigidBodies::stop(const Model& m, std::span<double> y, std::size_t b) {
+  if (m.bodies[b].inv_mass == 0) return;
+  const Layout at = layout(b);
+  put(y, at.momentum, Line{});
 }
 
 void RigidBodies::displace(const Model& m, std::span<double> y, std::size_t b, const Motion& pseudo) {

@@ -62,7 +62,8 @@ struct RigidBodies {
   static Model subset(const Model& m, std::span<const int> which);
   static std::size_t state_size(const Model& m) { return m.stride * m.bodies.size(); }
   static void initial_state(const Model& m, std::span<double> y);
-  static void derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt);
+  static void derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
+                         std::span<const char> asleep = {});
   // M / √(M M̃), the dual-number square root (cl301.hpp normalised): the rotor's
   // norm and the Study condition both.
   static bool renormalise(const Model& m, std::span<double> y);
@@ -117,6 +118,7 @@ struct RigidBodies {
   static double speed(const Motion& b) { return line_moment(b.rate).norm(); }
   static double angular_speed(const Motion& b) { return line_direction(b.rate).norm(); }
   static void store(const Model& m, std::span<double> y, std::size_t b, const Motion& motion);
+  static void stop(const Model& m, std::span<double> y, std::size_t b);
   // The pseudo-motion's rate as a displacement: M ← T(v) exp(−½ Ω_x) M, a turn
   // by |ω| about the line through the centre along ω, then the shift v.
   static void displace(const Model& m, std::span<double> y, std::size_t b, const Motion& pseudo);

@@ -113,12 +113,13 @@ void RigidBodies::initial_state(const Model& m, std::span<double> y) {
   std::copy(m.y0.begin(), m.y0.end(), y.begin());
 }
 
-void RigidBodies::derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt) {
+void RigidBodies::derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
+                             std::span<const char> asleep) {
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const Body& body = m.bodies[b];
     const Layout at = layout(m, b);
     std::fill(dydt.begin() + static_cast<long>(at.x), dydt.begin() + static_cast<long>(at.x + m.stride), 0.0);
-    if (body.inv_mass == 0) continue;  // static: never moves
+    if (body.inv_mass == 0 || (!asleep.empty() && asleep[b])) continue;  // static or asleep: does not move
     const Vec P = vec_at(y, at.p), L = vec_at(y, at.l);
     const Vec v = body.inv_mass * P;
     const core::BodyEffects& fx = m.effects;
@@ -305,6 +306,13 @@ void RigidBodies::store(const Model& m, std::span<double> y, std::size_t b, cons
   const Layout at = layout(m, b);
   put(y, at.p, Vec(vec_at(y, at.p) + motion.impulse));
   put(y, at.l, Vec(vec_at(y, at.l) + motion.angular_impulse));
+}
+
+void RigidBodies::stop(const Model& m, std::span<double> y, std::size_t b) {
+  if (m.bodies[b].inv_mass == 0) return;
+  const Layout at = layout(m, b);
+  put(y, at.p, Vec(Vec::Zero()));
+  put(y, at.l, Vec(Vec::Zero()));
 }
 
 void RigidBodies::displace(const Model& m, std::span<double> y, std::size_t b, const Motion& pseudo) {

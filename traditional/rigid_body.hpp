@@ -48,7 +48,8 @@ struct RigidBodies {
   static Model subset(const Model& m, std::span<const int> which);
   static std::size_t state_size(const Model& m) { return m.stride * m.bodies.size(); }
   static void initial_state(const Model& m, std::span<double> y);
-  static void derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt);
+  static void derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
+                         std::span<const char> asleep = {});
   // Gram–Schmidt for a matrix, q/|q| for a quaternion.
   static bool renormalise(const Model& m, std::span<double> y);
   static void observe(const Model& m, std::span<const double> y, core::Sample& s);
@@ -91,6 +92,7 @@ struct RigidBodies {
   static double speed(const Motion& b) { return b.v.norm(); }
   static double angular_speed(const Motion& b) { return b.w.norm(); }
   static void store(const Model& m, std::span<double> y, std::size_t b, const Motion& motion);
+  static void stop(const Model& m, std::span<double> y, std::size_t b);
   // Turns by the rotation vector w of the pseudo-motion.
   static void displace(const Model& m, std::span<double> y, std::size_t b, const Motion& pseudo);
 };

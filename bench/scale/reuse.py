@@ -15,7 +15,6 @@ narrowphase stage's seconds and the whole run's, per simulated second, and
 the counters that say why (pairs, shapes built, pairs their remembered axis
 decided).
 """
-import argparse
 import json
 import os
 import statistics
@@ -26,32 +25,21 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import box_scene  # noqa: E402
+import runs  # noqa: E402
+from runs import cell  # noqa: E402
 
 
 def run(args, scene, folder):
-    path = folder + ".json"
-    with open(path, "w") as f:
-        json.dump(scene, f)
-    cmd = [args.binary, "compare", path, "--backends", "traditional,cga", "--repeat", "1", "--out", folder]
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-    results = json.load(open(os.path.join(folder, "results.json")))
     out = {}
-    for r in results["runs"]:
-        out[r["backend"]] = {"wall": r["wall_seconds"]["median"] / args.duration,
-                             "narrowphase": r["stages"]["narrowphase"]["seconds"] / args.duration,
-                             "counters": r["counters"]}
+    for backend, r in runs.compare(args.binary, scene, folder, ["traditional", "cga"]).items():
+        out[backend] = {"wall": r["wall_seconds"]["median"] / args.duration,
+                        "narrowphase": r["stages"]["narrowphase"]["seconds"] / args.duration,
+                        "counters": r["counters"]}
     return out
 
 
-def cell(xs):
-    return f"{statistics.median(xs):.3g} ({min(xs):.3g}–{max(xs):.3g})"
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--binary", default="build/release/compare/gacompare")
-    ap.add_argument("--sizes", default="125,1000")
-    ap.add_argument("--repeat", type=int, default=3)
+    ap = runs.parser(__doc__)
     ap.add_argument("--duration", type=float, default=0.2)
     ap.add_argument("--seed", type=int, default=1)
     args = ap.parse_args()

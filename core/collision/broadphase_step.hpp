@@ -46,7 +46,8 @@ auto Collider<Bodies, NarrowBody, Spheres>::detect(State& state, const Model& m,
     std::vector<char> fixed(n);
     for (std::size_t k = 0; k < n; ++k) {
       radii[k] = setup.sphere_radius[group[k]];
-      fixed[k] = setup.is_static[group[k]];
+      // A sleeping body is held like a static one (core/collision/sleep.hpp).
+      fixed[k] = setup.is_static[group[k]] || (state.sleep.any() && state.sleep.asleep[group[k]]);
     }
     BroadphaseResult found = group.data() == setup.all_bodies.data()
                                  ? state.broadphase.find(centres, radii, fixed, margin)

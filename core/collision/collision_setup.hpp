@@ -51,6 +51,13 @@ struct CollisionCounters {
   // change of the last sweep), by decade: residual_histogram[k] counts those
   // in [1e-(k+1), 1e-k) m/s, [0] those ≥ 1e-1 and the last those < 1e-15.
   std::array<std::uint64_t, 16> residual_histogram{};
+  // Sleeping (core/collision/sleep.hpp), reported only when the scene asks
+  // for it: the islands put to sleep, the sleeping sets woken (by a body
+  // within reach, by an applied force), the detections repeated after a
+  // wake, and the sum over collision steps of the bodies asleep in them.
+  bool sleeping = false;
+  std::uint64_t sleep_islands = 0, sleep_woken_by_touch = 0, sleep_woken_by_force = 0, sleep_redetections = 0;
+  std::uint64_t sleeping_body_steps = 0;
   void add_sweeps(int sweeps);
   void add_residual(double residual);
   void add_to(std::map<std::string, std::uint64_t>& out) const;
@@ -72,6 +79,14 @@ struct CollisionSetup {
   // reaches this box (Collider::reaches_static).
   std::vector<Vec3> static_mid, static_half;
   std::vector<int> all_bodies;  // 0 … n − 1: the world as a group (see Collider)
+  // Each body's applied forces' windows [from, until): a force that acts
+  // keeps its body awake, and one that switches on wakes it (sleep.hpp).
+  std::vector<std::vector<std::pair<double, double>>> pushed;
+  bool pushed_during(std::size_t b, double t0, double t1) const {
+    for (const auto& [from, until] : pushed[b])
+      if (from < t1 && until > t0) return true;
+    return false;
+  }
   SolverSpec solver;          // the scene's: an island is integrated alone with it
   double gravity = 0;       // |g|
   double resting_speed = 0;  // v_rest above

@@ -44,6 +44,7 @@
 // the reach.
 #include "core/collision/collisions.hpp"
 #include "core/collision/islands.hpp"
+#include "core/collision/sleep.hpp"
 #include "core/collision/subsystem.hpp"
 #include "core/collision/time_of_impact_step.hpp"
 #include "core/dynamics/ode.hpp"
@@ -86,16 +87,62 @@ class CollisionStep {
     const std::size_t n = setup.all_bodies.size();
     const double h = t1 - t0;
     c_.forget_old_contacts(s_);
+    std::vector<double> margin = margins(y0, t0, h);
+    Detection d = c_.detect(s_, m_, y, setup.all_bodies, margin, profile);
+    unlink_far(d);
+    // Sleeping sets within reach of an awake body wake, and the world is
+    // detected again with them moving (core/collision/sleep.hpp).
+    while (s_.sleep.any()) {
+      const int woken = s_.sleep.wake_reached(setup.is_static, d.candidates);
+      if (woken == 0) break;
+      s_.counters.sleep_woken_by_touch += static_cast<std::uint64_t>(woken);
+      ++s_.counters.sleep_redetections;
+      margin = margins(y0, t0, h);
+      d = c_.detect(s_, m_, y, setup.all_bodies, margin, profile);
+      unlink_far(d);
+    }
+    std::vector<Island> islands;
+    if (!d.candidates.empty()) islands = islands_of(n, setup.is_static, d.candidates);
+    respond_islands(islands, d, margin, y, y0, t0, t1, profile);
+    if (setup.settings.sleep.on) settle(islands, y, t1, h);
+  }
+
+  // Before the step (t0, t1) is integrated: the sleeping sets on which an
+  // applied force acts within it wake, so that the force moves them.
+  void wake_pushed(double t0, double t1) const {
+    auto& sleep = s_.sleep;
+    if (!sleep.any()) return;
+    for (std::size_t k = 0; k < sleep.asleep.size(); ++k)
+      if (sleep.asleep[k] && c_.setup.pushed_during(k, t0, t1))
+        s_.counters.sleep_woken_by_force += sleep.wake(static_cast<int>(k));
+  }
+
+ private:
+  const C& c_;
+  const Model& m_;
+  State& s_;
+
+  // How far each body can move in the step (Collider::reach): 0 for a
+  // sleeping body, which does not move.
+  std::vector<double> margins(std::span<const double> y0, double t0, double h) const {
+    const auto& setup = c_.setup;
+    const std::size_t n = setup.all_bodies.size();
     std::vector<double> margin(n);
     const double farthest = 0.5 * setup.min_inradius / kLeastSubStep;  // the most a body may move in one step
     for (std::size_t k = 0; k < n; ++k) {
+      if (s_.sleep.any() && s_.sleep.asleep[k]) continue;
       margin[k] = c_.reach(m_, y0, setup.all_bodies, k, h);
       if (!(margin[k] <= farthest)) fail_too_fast(k, margin[k], t0, h);
     }
-    Detection d = c_.detect(s_, m_, y, setup.all_bodies, margin, profile);
-    unlink_far(d);
-    if (d.candidates.empty()) return;
-    const std::vector<Island> islands = islands_of(n, setup.is_static, d.candidates);
+    return margin;
+  }
+
+  // Steps 3 and 4 above, island by island.
+  void respond_islands(const std::vector<Island>& islands, Detection& d, const std::vector<double>& margin,
+                       std::span<double> y, std::span<const double> y0, double t0, double t1, Profile& profile) const {
+    const auto& setup = c_.setup;
+    const std::size_t n = setup.all_bodies.size();
+    const double h = t1 - t0;
     // Each hit to the island of its moving body.
     std::vector<int> island_of(n, -1);
     for (std::size_t k = 0; k < islands.size(); ++k)
@@ -122,10 +169,41 @@ class CollisionStep {
     }
   }
 
- private:
-  const C& c_;
-  const Model& m_;
-  State& s_;
+  // Falling asleep (core/collision/sleep.hpp), after the step's responses:
+  // each awake moving body's stillness at t1, then every island (and every
+  // moving body in none) whose bodies have all been still long enough is
+  // stopped and put to sleep as one set.
+  void settle(const std::vector<Island>& islands, std::span<double> y, double t1, double h) const {
+    const auto& setup = c_.setup;
+    auto& sleep = s_.sleep;
+    const Sleep& opt = setup.settings.sleep;
+    const std::size_t n = setup.all_bodies.size();
+    const auto awake = [&](std::size_t k) { return !setup.is_static[k] && !sleep.asleep[k]; };
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!awake(k)) continue;
+      const bool still = c_.rim_speed(m_, y, setup.all_bodies, k) <= opt.speed && !setup.pushed_during(k, t1, t1 + h);
+      sleep.still_for[k] = still ? sleep.still_for[k] + h : 0.0;
+    }
+    // The sum of a step's h over `time` carries rounding of ~1e-13 of it.
+    const auto rested = [&](int k) { return sleep.still_for[static_cast<std::size_t>(k)] >= opt.time * (1 - 1e-9); };
+    const auto fall_asleep = [&](std::span<const int> bodies) {
+      for (const int b : bodies) Bodies::stop(m_, y, static_cast<std::size_t>(b));
+      sleep.fall_asleep(bodies);
+      ++s_.counters.sleep_islands;
+    };
+    std::vector<char> in_island(n, 0);
+    for (const Island& is : islands) {
+      const std::span<const int> moving(is.bodies.data(), is.moving);
+      bool all = true;
+      for (const int b : moving) in_island[static_cast<std::size_t>(b)] = 1, all = all && rested(b);
+      if (all) fall_asleep(moving);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      const int b = static_cast<int>(k);
+      if (awake(k) && !in_island[k] && rested(b)) fall_asleep(std::span<const int>(&b, 1));
+    }
+    s_.counters.sleeping_body_steps += sleep.sleeping;
+  }
 
   // Links by distance, not by bounding spheres: a candidate pair the
   // narrowphase found apart at t1 by a gap g (a lower bound of the distance)

@@ -48,6 +48,13 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["direct_friction_rounds"] = direct_rounds;
   out["direct_unsolved"] = direct_unsolved;
   out["projections_refused"] = projections_refused;
+  if (sleeping) {
+    out["sleep_islands"] = sleep_islands;
+    out["sleep_woken_by_touch"] = sleep_woken_by_touch;
+    out["sleep_woken_by_force"] = sleep_woken_by_force;
+    out["sleep_redetections"] = sleep_redetections;
+    out["sleeping_body_steps"] = sleeping_body_steps;
+  }
   for (std::size_t k = 0; k < sweep_histogram.size(); ++k) {
     if (!sweep_histogram[k]) continue;
     const std::uint64_t lo = std::uint64_t{1} << k, hi = (lo << 1) - 1;
@@ -101,6 +108,8 @@ CollisionSetup collision_setup(const Scene& scene, const Model& model) {
     s.static_half.push_back(b.box_half);
     s.all_bodies.push_back(static_cast<int>(s.all_bodies.size()));
   }
+  s.pushed.resize(scene.bodies.size());
+  for (const auto& push : model.effects.pushes) s.pushed[push.body].emplace_back(push.from, push.until);
   return s;
 }
 

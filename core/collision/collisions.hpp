@@ -21,6 +21,7 @@
 #include "core/error.hpp"
 #include "core/collision/narrowphase.hpp"
 #include "core/collision/pair_memory.hpp"
+#include "core/collision/sleep.hpp"
 #include "core/dynamics/rigid_body.hpp"
 #include "core/model/model.hpp"
 #include "core/model/scene.hpp"
@@ -73,6 +74,7 @@ struct CollisionState {
   std::uint64_t detection = 0;
   collision::PairMemory<collision::SatHint> hints;  // each pair's last axis
   ContactSolver<Bodies> contact;  // the response stage, with its warm-start cache
+  SleepState sleep;               // empty unless the scene asks for sleeping
 };
 
 // The collider works on a group of bodies: the whole world (the world's model
@@ -116,6 +118,8 @@ struct Collider {
                           std::to_string(c.setup.settings.penetration_tolerance) +
                           " m): a scene must start without collisions (§2.4.3 fn 28)");
     state.counters = {};
+    state.counters.sleeping = c.setup.settings.sleep.on;
+    if (c.setup.settings.sleep.on) state.sleep = SleepState(c.setup.all_bodies.size());
     return c;
   }
 

@@ -136,10 +136,18 @@ class TreeBroadphase {
   TreeWork update(const BroadphaseBodies<Sphere>& b, std::vector<std::pair<int, int>>& pairs,
                   std::vector<std::pair<int, int>>& candidates) {
     const std::size_t n = b.spheres.size();
-    if (leaf_.size() != n || !std::equal(is_static_.begin(), is_static_.end(), b.is_static.begin(), b.is_static.end())) {
+    if (leaf_.size() != n) {
       clear();
       leaf_.assign(n, kNull);
       is_static_.assign(b.is_static.begin(), b.is_static.end());
+    }
+    // A body that became static or moving (it fell asleep or woke,
+    // core/collision/sleep.hpp) leaves its tree and is inserted in the other
+    // below, its pairs found again like a moved body's.
+    for (std::size_t i = 0; i < n; ++i) {
+      if (is_static_[i] == b.is_static[i]) continue;
+      if (leaf_[i] != kNull) tree_of(i).remove(leaf_[i]), leaf_[i] = kNull;
+      is_static_[i] = b.is_static[i];
     }
     const bool growing = !b.margins.empty();
     TreeWork work;

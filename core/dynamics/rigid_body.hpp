@@ -37,8 +37,11 @@ concept RigidBodyDynamics = requires(const Scene& scene, const Model& compiled, 
   { B::subset(m, which) } -> std::same_as<typename B::Model>;
   { B::state_size(m) } -> std::same_as<std::size_t>;
   { B::initial_state(m, out) };
-  // ẋ = P/m, Ṗ = F, L̇ = τ = Σ (p − x) × F_p (or ∧), and the rotation's rate.
+  // ẋ = P/m, Ṗ = F, L̇ = τ = Σ (p − x) × F_p (or ∧), and the rotation's rate;
+  // zero, and not computed, for the bodies flagged in a mask of sleeping ones
+  // (core/collision/sleep.hpp).
   { B::derivative(m, t, y, out) };
+  { B::derivative(m, t, y, out, std::span<const char>{}) };
   // Restores the rotation to a rotation (Gram–Schmidt, or dividing by the
   // norm) where the scene asks for it; true when the state changed.
   { B::renormalise(m, out) } -> std::same_as<bool>;
@@ -96,6 +99,8 @@ concept ContactBodies = requires(const typename B::Model& m, std::span<double> y
   { B::quarter_turn(v, v) } -> std::convertible_to<Eigen::Vector3d>;
   // P += Σ j n, L += Σ j r × n: the impulses pushed into the motion.
   { B::store(m, y, b, std::as_const(motion)) };
+  // P = 0 and L = 0: a body put to sleep (core/collision/sleep.hpp).
+  { B::stop(m, y, b) };
   // Positional correction by pseudo-velocities (split impulse): moves body b
   // by the displacement and turns it by the rotation of a Motion that started
   // at rest; P and L are not touched, so no momentum is injected.

@@ -38,6 +38,9 @@ struct Simulation {
     // not list has no entry and no counter: nothing evaluates it.
     std::vector<std::pair<std::string, std::uint64_t>> effect_targets;
     mutable std::uint64_t force_evaluations = 0;
+    // Of those, the sleeping bodies skipped and the applied forces on them
+    // (core/collision/sleep.hpp): terms not evaluated.
+    mutable std::uint64_t asleep_body_evaluations = 0, asleep_push_evaluations = 0;
   };
 
   // What a run changes as it goes, beside the state vector: the collision
@@ -48,7 +51,7 @@ struct Simulation {
   static Data data(const Model& m) { return Data{m.collisions_start}; }
 
   static Model build(const Scene& scene, std::shared_ptr<const core::Model> compiled) {
-    Model m{Particles::build(scene), {}, std::move(compiled), 0, std::nullopt, std::nullopt, 0, effect_targets(scene), 0};
+    Model m{Particles::build(scene), {}, std::move(compiled), 0, std::nullopt, std::nullopt, 0, effect_targets(scene)};
     if (!scene.bodies.empty()) require_volumes(scene, *m.compiled);
     m.bodies = Bodies::build(scene, *m.compiled);
     m.offset = Particles::state_size(m.particles);
@@ -108,7 +111,17 @@ struct Simulation {
         throw run_error(msg.str());
       }
       y0 = y;
-      solver.advance(f, t, t1, y, profile, after);
+      step.wake_pushed(t0, t1);
+      if (state.sleep.any()) {
+        // Sleeping bodies do not move: their derivative is zero and not
+        // computed (core/collision/sleep.hpp).
+        auto awake = [&](double tt, std::span<const double> yy, std::span<double> dy) {
+          derivative(m, tt, yy, dy, profile, state.sleep.asleep);
+        };
+        solver.advance(awake, t, t1, y, profile, after);
+      } else {
+        solver.advance(f, t, t1, y, profile, after);
+      }
       ++state.counters.steps;
       fail_if_nonfinite(m, y, "integrate", t);  // before the broadphase sorts on it
       step.resolve(bodies(y), bodies(y0), t0, t1, profile);
@@ -150,14 +163,19 @@ struct Simulation {
   static std::vector<int> velocity_of(const Model& m) {
     return m.bodies.bodies.empty() ? Particles::velocity_of(m.particles) : std::vector<int>{};
   }
+  // `asleep`: empty, or a flag per body; a sleeping body's derivative is
+  // zero and not computed, and its terms are not counted.
   static void derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
-                         Profile& profile) {
+                         Profile& profile, std::span<const char> asleep = {}) {
     ++m.force_evaluations;
     if (m.offset > 0) Particles::derivative(m.particles, t, y.first(m.offset), dydt.first(m.offset), profile);
     if (!m.bodies.bodies.empty()) {
       ScopedStage timed(profile, Stage::forces);
-      Bodies::derivative(m.bodies, t, y.subspan(m.offset), dydt.subspan(m.offset));
+      Bodies::derivative(m.bodies, t, y.subspan(m.offset), dydt.subspan(m.offset), asleep);
     }
+    if (asleep.empty()) return;
+    for (const char a : asleep) m.asleep_body_evaluations += a ? 1 : 0;
+    for (const auto& push : m.compiled->effects.pushes) m.asleep_push_evaluations += asleep[push.body] ? 1 : 0;
   }
   static bool after_step(const Model& m, std::vector<double>& y, Profile& profile) {
     const bool projected = Particles::after_step(m.particles, y, profile);
@@ -178,8 +196,15 @@ struct Simulation {
   static std::map<std::string, std::uint64_t> counters(const Model& m, const Data& data) {
     auto out = Particles::counters(m.particles);
     if (data.collisions) data.collisions->counters.add_to(out);
-    for (const auto& [name, targets] : m.effect_targets)
-      if (targets > 0) out["effect_" + name + "_terms"] += m.force_evaluations * targets;
+    for (const auto& [name, targets] : m.effect_targets) {
+      if (targets == 0) continue;
+      // Gravity and the drags act on every moving body, applied forces on theirs: less the sleeping ones.
+      const bool per_body = name != "attraction_between_particles" && name != "attraction_to_point";
+      const std::uint64_t skipped = name == "applied_forces" ? m.asleep_push_evaluations
+                                    : per_body             ? m.asleep_body_evaluations
+                                                           : 0;
+      out["effect_" + name + "_terms"] += m.force_evaluations * targets - skipped;
+    }
     return out;
   }
   static std::map<std::string, double> metrics(const Model& m) {

@@ -556,9 +556,10 @@ class Loader {
       });
       return a;
     }
-    static constexpr Keys<10> keys = {"type",           "restitution",   "penetration_tolerance", "step",
+    static constexpr Keys<11> keys = {"type",           "restitution",   "penetration_tolerance", "step",
                                       "time_of_impact", "impact_motion", "method",                "broadphase",
-                                      "reuse",          "contact_solver"};
+                                      "reuse",          "contact_solver", "sleep"};
+    static constexpr Keys<2> sleep_keys = {"speed", "time"};
     Obj o(v, keys);
     Collisions c;
     if (auto x = o.opt("method")) {
@@ -598,6 +599,12 @@ class Loader {
     if (auto x = o.opt("restitution")) c.restitution = number(*x, Range::unit);
     if (auto x = o.opt("penetration_tolerance")) c.penetration_tolerance = number(*x, Range::positive);
     if (auto x = o.opt("reuse")) c.reuse = boolean(*x);
+    if (auto x = o.opt("sleep")) {
+      const Obj so(*x, sleep_keys, "an object {\"speed\": m/s, \"time\": s}");
+      c.sleep.on = true;
+      if (auto y = so.opt("speed")) c.sleep.speed = number(*y, Range::positive);
+      if (auto y = so.opt("time")) c.sleep.time = number(*y, Range::positive);
+    }
     return c;
   }
 

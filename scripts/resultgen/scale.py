@@ -1,6 +1,7 @@
 """docs/results/scale.md: boxes of 27 to 10,000 bodies through traditional,
-cga and Bullet (bench/scale/scale.py), and what the narrowphase's reuse saves
-(bench/scale/reuse.py)."""
+cga and Bullet (bench/scale/scale.py), what the narrowphase's reuse saves
+(bench/scale/reuse.py) and what sleeping saves on a settled pile
+(bench/scale/sleep.py)."""
 import json
 import os
 import re
@@ -19,6 +20,8 @@ def generate(ctx):
         data = json.load(f)
     reuse_args = ["--sizes", "125,1000", "--repeat", "1" if ctx.quick else "3", "--duration", "0.2"]
     reuse = strip_command_line(ctx.run(["python3", "bench/scale/reuse.py", "--binary", ctx.gacompare, *reuse_args]))
+    sleep_args = ["--sizes", "125,1000", "--repeat", "1" if ctx.quick else "3"]
+    sleep = strip_command_line(ctx.run(["python3", "bench/scale/sleep.py", "--binary", ctx.gacompare, *sleep_args]))
     headline = []
     largest = str(max(data["sizes"]))
     r = data["results"][largest]
@@ -31,4 +34,10 @@ def generate(ctx):
         if m:
             headline.append({"finding": f"Cost ∝ N^p from 125 bodies up, {m.group(1)}", "value": f"p = {m.group(2)}",
                              "anchor": "#bodies-in-a-box"})
-    return {"blocks": {"scale": scale, "reuse": reuse}, "headline": headline}
+    for line in sleep.splitlines():
+        cols = [c.strip() for c in line.strip("|").split("|")]
+        if len(cols) == 8 and cols[1] == "traditional" and cols[0].isdigit():
+            headline.append({"finding": f"A settled pile of {int(cols[0]):,} cubes asleep, against awake (traditional)",
+                             "value": f"{float(cols[4]):.1%} of the time per simulated second",
+                             "anchor": "#what-sleeping-saves"})
+    return {"blocks": {"scale": scale, "reuse": reuse, "sleep": sleep}, "headline": headline}

@@ -193,6 +193,7 @@ TEST(SceneLoad, OptionalKeysTakeTheirDefaults) {
   EXPECT_EQ(s.find_effect<Collisions>()->restitution, Collisions{}.restitution);
   EXPECT_EQ(s.find_effect<Collisions>()->broadphase, Collisions{}.broadphase);
   EXPECT_TRUE(s.find_effect<Collisions>()->reuse);
+  EXPECT_FALSE(s.find_effect<Collisions>()->sleep.on);
   EXPECT_TRUE(s.particles.empty());
   EXPECT_TRUE(s.constraints.empty());
   EXPECT_EQ(s.bodies[0].velocity, Vec3::Zero());
@@ -412,6 +413,15 @@ std::vector<BadCase> bad_cases() {
        set("/effects/1/penetration_tolerance", 0),
        {": /effects/1/penetration_tolerance: expected a number > 0, got 0"}},
       {"ReuseNotBool", set("/effects/1/reuse", "no"), {": /effects/1/reuse: expected true or false, got \"no\""}},
+      {"SleepNotObject",
+       set("/effects/1/sleep", true),
+       {": /effects/1/sleep: expected an object {\"speed\": m/s, \"time\": s}, got true"}},
+      {"SleepZeroSpeed",
+       set("/effects/1/sleep", json{{"speed", 0}}),
+       {": /effects/1/sleep/speed: expected a number > 0, got 0"}},
+      {"SleepUnknownKey",
+       set("/effects/1/sleep", json{{"after", 1}}),
+       {": /effects/1/sleep/after: expected one of the keys", "got the unknown key \"after\""}},
       {"DragWithoutK",
        set("/effects/2", json{{"type", "linear_drag"}}),
        {": /effects/2/k: expected a number >= 0, got nothing"}},
