@@ -75,6 +75,14 @@ struct SphereOps {
   // algebra, not the report's (the meet costs several times the twin's
   // time: bench/bounding_volume_bench.cpp).
   static bool overlap(const Sphere& s1, const Sphere& s2);
+  // The same for spheres built by sphere(c, ρ) whose radii the caller holds
+  // (the broadphase keeps them beside the spheres): normalised (S·n = −1),
+  // S1·S2 = ½(ρ1² + ρ2² − d²), so d ≤ ρ1 + ρ2 ⟺ S1·S2 + ρ1ρ2 ≥ 0, nested
+  // balls included. One inner product where overlap needs three and the
+  // weights: the radius is the one thing a dual sphere holds only squared.
+  static bool balls_overlap(const Sphere& s1, double r1, const Sphere& s2, double r2) {
+    return scalar_product(s1, s2) + r1 * r2 >= 0;
+  }
 
   // The sphere trees' node operations (§4.2.2; core/collision/tree_broadphase.hpp),
   // all from inner products of normalised dual spheres (S·n = −1, which every

@@ -75,8 +75,11 @@ struct SphereOps {
     return 0.5 * (distance2(s.centre, x) - s.radius * s.radius) <= tol;
   }
   // |c1 − c2| ≤ ρ1 + ρ2, squared: touching and nested overlap.
-  static bool overlap(const Sphere& s1, const Sphere& s2) {
-    const double r = s1.radius + s2.radius;
+  static bool overlap(const Sphere& s1, const Sphere& s2) { return balls_overlap(s1, s1.radius, s2, s2.radius); }
+  // The same with the radii given (those the spheres were built with), as
+  // the broadphase asks it of every algebra.
+  static bool balls_overlap(const Sphere& s1, double r1, const Sphere& s2, double r2) {
+    const double r = r1 + r2;
     return distance2(s1.centre, s2.centre) <= r * r;
   }
 

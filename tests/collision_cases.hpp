@@ -426,7 +426,7 @@ TYPED_TEST_P(BoundingVolumeCases, ContainsUsesTheSideConvention) {
   EXPECT_FALSE(Ops::contains(s, at(2.001), 2.0004e-3));
 }
 
-// overlap() against the distance test |c1 − c2| ≤ ρ1 + ρ2 on 20,000 random
+// overlap() and balls_overlap() against the distance test |c1 − c2| ≤ ρ1 + ρ2 on 20,000 random
 // pairs (centres within ±2, radii 0.05–1.5: apart, crossing and nested), of
 // which a third are drawn nested (one sphere strictly inside the other) and a
 // few concentric. Outside the touching band |d − (ρ1 + ρ2)| ≤ 1e-9·(scale),
@@ -456,6 +456,8 @@ TYPED_TEST_P(BoundingVolumeCases, OverlapAgreesWithTheDistanceTest) {
     const auto s1 = Ops::sphere(c1, r1), s2 = Ops::sphere(c2, r2);
     EXPECT_EQ(Ops::overlap(s1, s2), want) << i << ": d " << d << " r1 " << r1 << " r2 " << r2;
     EXPECT_EQ(Ops::overlap(s2, s1), want) << i;
+    EXPECT_EQ(Ops::balls_overlap(s1, r1, s2, r2), want) << i << ": d " << d << " r1 " << r1 << " r2 " << r2;
+    EXPECT_EQ(Ops::balls_overlap(s2, r2, s1, r1), want) << i;
     ++checked;
     nested += d < std::abs(r1 - r2);
     apart += !want;
@@ -468,6 +470,10 @@ TYPED_TEST_P(BoundingVolumeCases, OverlapAgreesWithTheDistanceTest) {
   EXPECT_TRUE(Ops::overlap(Ops::sphere(Vec3(0, 0, 0), 2), Ops::sphere(Vec3(1, 0, 0), 1)));
   EXPECT_TRUE(Ops::overlap(Ops::sphere(Vec3(0, 0, 0), 2), Ops::sphere_2(Ops::point(Vec3(0, 2, 0)), Ops::point(Vec3(0, 2, 0)))));
   EXPECT_FALSE(Ops::overlap(Ops::sphere(Vec3(0, 0, 0), 1), Ops::sphere(Vec3(2.5, 0, 0), 1)));
+  EXPECT_TRUE(Ops::balls_overlap(Ops::sphere(Vec3(0, 0, 0), 1), 1, Ops::sphere(Vec3(2, 0, 0), 1), 1));
+  EXPECT_TRUE(Ops::balls_overlap(Ops::sphere(Vec3(0, 0, 0), 2), 2, Ops::sphere(Vec3(1, 0, 0), 1), 1));
+  EXPECT_TRUE(Ops::balls_overlap(Ops::sphere(Vec3(0, 0, 0), 2), 2, Ops::sphere(Vec3(0, 0, 0), 0), 0));
+  EXPECT_FALSE(Ops::balls_overlap(Ops::sphere(Vec3(0, 0, 0), 1), 1, Ops::sphere(Vec3(2.5, 0, 0), 1), 1));
 }
 
 // The sphere trees' node operations (core/collision/tree_broadphase.hpp)

@@ -46,8 +46,11 @@ struct SphereOps {
 
   // The distance test |c1 − c2| ≤ ρ1 + ρ2, squared (no root). Touching overlaps;
   // nested spheres overlap (their balls do, though their surfaces do not meet).
-  static bool overlap(const Sphere& s1, const Sphere& s2) {
-    const double r = s1.radius + s2.radius;
+  static bool overlap(const Sphere& s1, const Sphere& s2) { return balls_overlap(s1, s1.radius, s2, s2.radius); }
+  // The same with the radii given (those the spheres were built with), as
+  // the broadphase asks it of either algebra.
+  static bool balls_overlap(const Sphere& s1, double r1, const Sphere& s2, double r2) {
+    const double r = r1 + r2;
     return (s2.centre - s1.centre).squaredNorm() <= r * r;
   }
 

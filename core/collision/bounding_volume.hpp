@@ -99,6 +99,9 @@ concept BoundingSphereOps = requires(const typename Ops::Sphere& s, const typena
   { Ops::sphere_4(p, p, p, p) } -> std::convertible_to<std::optional<typename Ops::Sphere>>;
   { Ops::contains(s, p, t) } -> std::convertible_to<bool>;
   { Ops::overlap(s, s) } -> std::convertible_to<bool>;
+  // overlap of spheres built by sphere(c, ρ), their radii given: what the
+  // broadphase asks (it holds the radii), at the cost of the cheapest form.
+  { Ops::balls_overlap(s, t, s, t) } -> std::convertible_to<bool>;
   { Ops::centre(s) } -> std::convertible_to<Vec3>;
   { Ops::radius(s) } -> std::convertible_to<double>;
 };

@@ -6,14 +6,15 @@
 // "fast search algorithms ... to efficiently isolate possible collisions" (fn
 // 23) without giving one; the report's simulator tests every pair. Here: sort
 // and sweep along one axis (Baraff 1992; Cohen et al., I-COLLIDE 1995), then
-// the backend's own sphere test (SphereOps::overlap: the distance test, or the
-// conformal meet, cga/bounding_volume.hpp) on each pair the sweep leaves.
+// the backend's own sphere test (SphereOps::balls_overlap: the distance test,
+// or one conformal inner product, cga/bounding_volume.hpp) on each pair the
+// sweep leaves.
 //
 //   1. Each sphere's extent along the axis, [c − ρ − pad, c + ρ + pad], from
 //      Ops::centre and Ops::radius (once per sphere: O(n)).
 //   2. Sort the intervals by their lower end: O(n log n).
 //   3. Sweep: each interval is paired with those after it whose lower end is
-//      ≤ its upper end. These are the candidates; every one gets Ops::overlap.
+//      ≤ its upper end. These are the candidates; every one gets Ops::balls_overlap.
 //      O(n + k), k the number of candidates.
 //   4. The overlapping pairs, (i, j) with i < j, sorted.
 //
@@ -27,7 +28,7 @@
 // of the coordinates, and the conformal overlap test decides touching pairs by
 // its own rounding; padding by the collision code's touching band (1e-9 of the
 // scale, core/collision/collision.hpp) guarantees the sweep never drops a pair that
-// Ops::overlap would accept. It only adds candidates within the band.
+// Ops::balls_overlap would accept. It only adds candidates within the band.
 #include "core/collision/bounding_volume.hpp"
 #include "core/model/scene.hpp"
 #include "core/collision/tree_broadphase.hpp"
@@ -45,7 +46,7 @@ inline constexpr double kSweepPad = 1e-9;
 
 struct BroadphaseCounters {
   std::int64_t candidates = 0;     // volume tests: pairs left by the sweep; tree nodes tested and kept pairs
-  std::int64_t overlap_tests = 0;  // Ops::overlap calls on two bodies' spheres (the sweep: = candidates)
+  std::int64_t overlap_tests = 0;  // Ops::balls_overlap calls on two bodies' spheres (the sweep: = candidates)
   std::int64_t pairs = 0;          // overlapping pairs found
   std::int64_t tree_updates = 0;   // leaves inserted (a body left its fat volume, or a build)
   std::int64_t pairs_kept = 0;     // persistent pairs after the update (fat volumes overlap)
@@ -90,15 +91,17 @@ inline void sort_pairs(std::vector<std::pair<int, int>>& pairs, std::size_t n) {
   pass([](const std::pair<int, int>& p) { return p.first; }, tmp, pairs);
 }
 
+// `given`: the radii the spheres were built with (Ops::sphere), or empty to
+// read them off the spheres.
 template <BoundingSphereOps Ops>
-BroadphaseResult sort_and_sweep(std::span<const typename Ops::Sphere> spheres) {
+BroadphaseResult sort_and_sweep(std::span<const typename Ops::Sphere> spheres, std::span<const double> given = {}) {
   const std::size_t n = spheres.size();
   BroadphaseResult out;
   std::vector<Vec3> centres(n);
   std::vector<double> radii(n);
   for (std::size_t i = 0; i < n; ++i) {
     centres[i] = Ops::centre(spheres[i]);
-    radii[i] = Ops::radius(spheres[i]);
+    radii[i] = given.empty() ? Ops::radius(spheres[i]) : given[i];
   }
   out.axis = axis_of_largest_spread(centres);
 
@@ -121,7 +124,8 @@ BroadphaseResult sort_and_sweep(std::span<const typename Ops::Sphere> spheres) {
       ++out.counters.candidates;
       ++out.counters.overlap_tests;
       const int i = iv[a].body, j = iv[b].body;
-      if (Ops::overlap(spheres[static_cast<std::size_t>(i)], spheres[static_cast<std::size_t>(j)]))
+      const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+      if (Ops::balls_overlap(spheres[ui], radii[ui], spheres[uj], radii[uj]))
         out.pairs.emplace_back(std::min(i, j), std::max(i, j));
     }
   }
@@ -133,7 +137,7 @@ BroadphaseResult sort_and_sweep(std::span<const typename Ops::Sphere> spheres) {
 // The collision pipeline's broadphase: one call per detection,
 // whichever method the scene names (`broadphase`: "sweep", "aabb_tree",
 // "sphere_tree"; core/model/scene.hpp), the same pairs from each: those whose
-// bounding spheres pass Ops::overlap and, given margins (how far each body can
+// bounding spheres pass Ops::balls_overlap and, given margins (how far each body can
 // move in the step), the candidates whose spheres grown by them do. Two static
 // bodies are never a pair.
 //
@@ -160,12 +164,13 @@ class Broadphase {
                         std::span<const double> margins = {}) {
     place(centres, radii, margins);
     BroadphaseResult out;
-    const BroadphaseBodies<Sphere> b{local_, radii, margins, spheres_, margins.empty() ? spheres_ : grown_, is_static};
+    const BroadphaseBodies<Sphere> b{local_,  radii, margins, spheres_, margins.empty() ? spheres_ : grown_,
+                                     margins.empty() ? radii : std::span<const double>(grown_radii_), is_static};
     if (method_ == BroadphaseMethod::sweep) {
       const auto both_static = [&](const std::pair<int, int>& p) {
         return is_static[static_cast<std::size_t>(p.first)] && is_static[static_cast<std::size_t>(p.second)];
       };
-      BroadphaseResult swept = sort_and_sweep<Ops>(b.grown);
+      BroadphaseResult swept = sort_and_sweep<Ops>(b.grown, b.grown_radii);
       std::erase_if(swept.pairs, both_static);
       out.counters = swept.counters;
       if (margins.empty()) {
@@ -174,8 +179,8 @@ class Broadphase {
         out.candidates = std::move(swept.pairs);
         for (const auto& [i, j] : out.candidates) {
           ++out.counters.candidates, ++out.counters.overlap_tests;
-          if (Ops::overlap(spheres_[static_cast<std::size_t>(i)], spheres_[static_cast<std::size_t>(j)]))
-            out.pairs.emplace_back(i, j);
+          const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+          if (Ops::balls_overlap(spheres_[ui], radii[ui], spheres_[uj], radii[uj])) out.pairs.emplace_back(i, j);
         }
       }
     } else {
@@ -200,6 +205,7 @@ class Broadphase {
   int frames_ = 0;
   std::vector<Vec3> local_;  // centres in the frame
   std::vector<Sphere> spheres_, grown_;
+  std::vector<double> grown_radii_;  // radius + margin: what grown_ was built with
   TreeBroadphase<AabbVolume, Ops> aabb_;
   TreeBroadphase<SphereVolume<Ops>, Ops> spheres_tree_;
 
@@ -219,10 +225,13 @@ class Broadphase {
     local_.resize(n);
     spheres_.clear();
     grown_.clear();
+    grown_radii_.clear();
     for (std::size_t i = 0; i < n; ++i) {
       local_[i] = centres[i] - frame_;
       spheres_.push_back(Ops::sphere(local_[i], radii[i]));
-      if (!margins.empty()) grown_.push_back(Ops::sphere(local_[i], radii[i] + margins[i]));
+      if (margins.empty()) continue;
+      grown_radii_.push_back(radii[i] + margins[i]);
+      grown_.push_back(Ops::sphere(local_[i], grown_radii_.back()));
     }
   }
 };

@@ -92,7 +92,9 @@ auto Collider<Bodies, NarrowBody, Spheres>::detect_among(State& state, const Mod
       const auto [i, j] = p;
       ++state.counters.broadphase_candidates;
       if (setup.is_static[group[i]] && setup.is_static[group[j]]) continue;
-      if (!Spheres::overlap(spheres[static_cast<std::size_t>(i)], spheres[static_cast<std::size_t>(j)])) continue;
+      if (!Spheres::balls_overlap(spheres[static_cast<std::size_t>(i)], setup.sphere_radius[group[i]],
+                                  spheres[static_cast<std::size_t>(j)], setup.sphere_radius[group[j]]))
+        continue;
       if (misses_static(pose, group, centres, p, {})) continue;
       pairs.emplace_back(i, j);
     }

@@ -24,10 +24,10 @@
 //      not changed, so neither has their overlap. A still scene reinserts
 //      nothing and queries nothing;
 //   3. every kept pair gets the backend's exact sphere test
-//      (Ops::overlap on the tight spheres), and the survivors, sorted, are the
+//      (Ops::balls_overlap on the tight spheres), and the survivors, sorted, are the
 //      answer: the same pairs as sort and sweep's and all pairs' (tested).
 // Why the answer is exact although tree volumes are rounded: a pair whose tight
-// spheres pass Ops::overlap has fat volumes overlapping by at least the two
+// spheres pass Ops::balls_overlap has fat volumes overlapping by at least the two
 // margins (kFatMargin of each radius), far more than the rounding of
 // any merge, containment or overlap test (~1e-16 of the coordinates' squares
 // over the radius; see core/collision/broadphase.hpp for the frame that keeps
@@ -106,13 +106,14 @@ struct BroadphaseBodies {
   std::span<const double> margins;  // empty, or one per body
   std::span<const Sphere> spheres;  // Ops::sphere(centre, radius)
   std::span<const Sphere> grown;    // Ops::sphere(centre, radius + margin); = spheres without margins
+  std::span<const double> grown_radii;  // radius + margin; = radii without margins
   std::span<const char> is_static;
 };
 
 // The work of one update, for the counters.
 struct TreeWork {
   std::int64_t volume_tests = 0;  // tree nodes tested by the queries
-  std::int64_t exact_tests = 0;   // Ops::overlap calls on kept pairs
+  std::int64_t exact_tests = 0;   // Ops::balls_overlap calls on kept pairs
   std::int64_t reinserted = 0;    // leaves (re)inserted
   std::int64_t kept = 0;          // pairs kept after the update
 };
@@ -168,11 +169,11 @@ class TreeBroadphase {
       const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
       if (growing) {
         ++work.exact_tests;
-        if (!Ops::overlap(b.grown[ui], b.grown[uj])) continue;
+        if (!Ops::balls_overlap(b.grown[ui], b.grown_radii[ui], b.grown[uj], b.grown_radii[uj])) continue;
         candidates.emplace_back(i, j);
       }
       ++work.exact_tests;
-      if (Ops::overlap(b.spheres[ui], b.spheres[uj])) pairs.emplace_back(i, j);
+      if (Ops::balls_overlap(b.spheres[ui], b.radii[ui], b.spheres[uj], b.radii[uj])) pairs.emplace_back(i, j);
     }
     work.volume_tests = moving_.take_volume_tests() + fixed_.take_volume_tests();
     return work;
