@@ -1,6 +1,7 @@
 #include "cga/rigid_body.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -81,11 +82,12 @@ void RigidBodies::initial_state(const Model& m, std::span<double> y) {
 
 void RigidBodies::derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
                              std::span<const char> asleep) {
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+  // Each body's slice of dydt is its own: bodies in parallel (core/parallel.hpp).
+  core::for_each_index(m.bodies.size(), [&](std::size_t b) {
     const Body& body = m.bodies[b];
     const Layout at = layout(b);
     std::fill(dydt.begin() + static_cast<long>(at.x), dydt.begin() + static_cast<long>(at.x + Model::stride), 0.0);
-    if (body.inv_mass == 0 || (!asleep.empty() && asleep[b])) continue;  // static or asleep: does not move
+    if (body.inv_mass == 0 || (!asleep.empty() && asleep[b])) return;  // static or asleep: does not move
     const Vector3 v = body.inv_mass * vec_at(y, at.p);
     const Rotor3 r = rotor_at(y, at.rot);
     // Ω_body from the normalised rotor. With R itself, R̃ L R and
@@ -121,7 +123,7 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     put(dydt, at.rot, -0.5 * (r * omega_body));  // eq. 35
     put(dydt, at.p, force);
     put(dydt, at.l, torque);
-  }
+  });
 }
 
 bool RigidBodies::renormalise(const Model& m, std::span<double> y) {

@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "core/model/model.hpp"
 #include "core/model/scene.hpp"
+#include "core/parallel.hpp"
 #include "core/read_file.hpp"
 
 #include <CLI/CLI.hpp>
@@ -524,6 +525,10 @@ int main(int argc, char** argv) {
   double max_input_mb = static_cast<double>(core::kDefaultMaxInputBytes) / 1e6;
   app.add_option("--max-input-mb", max_input_mb, "most MB one input file may hold (default 256)")
       ->check(cli::positive_number());
+  // The stages' threads (core/parallel.hpp): results are the same for any number.
+  int threads = 1;
+  app.add_option("--threads", threads, "threads the stages may use (default 1; results are bit-identical for any)")
+      ->check(cli::whole_number(1, 256));
   const auto backend_check = cli::one_of("backend", compare::known_backends());
   const auto repeat_check = cli::whole_number(1, compare::kMaxRepeats);
 
@@ -663,6 +668,7 @@ int main(int argc, char** argv) {
   }
 
   core::set_max_input_bytes(static_cast<std::uint64_t>(std::min(max_input_mb * 1e6, 1e18)));
+  core::set_threads(threads);
   try {
     if (*run)
       return run_and_report(load_all({run_scene}), {run_backend}, compare::Selection::exactly, run_repeat, run_out, quiet);

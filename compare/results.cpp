@@ -1,6 +1,7 @@
 #include "compare/results.hpp"
 
 #include "compare/stats.hpp"
+#include "core/parallel.hpp"
 #include "core/model/model.hpp"
 
 #include <cmath>
@@ -137,6 +138,7 @@ nlohmann::ordered_json machine_json(const MachineInfo& m) {
   return {{"cpu", m.cpu},
           {"logical_cpus", m.logical_cpus},
           {"usable_cpus", m.usable_cpus},
+          {"threads", core::threads()},
           {"load_average", {{"start", m.load_average}, {"end", m.load_average_end}}},
           {"compiler", m.compiler},
           {"build_type", m.build_type},

@@ -1,6 +1,7 @@
 #include "pga/rigid_body.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -79,12 +80,13 @@ void RigidBodies::initial_state(const Model& m, std::span<double> y) {
 
 void RigidBodies::derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
                              std::span<const char> asleep) {
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+  // Each body's slice of dydt is its own: bodies in parallel (core/parallel.hpp).
+  core::for_each_index(m.bodies.size(), [&](std::size_t b) {
     const Body& body = m.bodies[b];
     const Layout at = layout(b);
     std::fill(dydt.begin() + static_cast<long>(at.motor), dydt.begin() + static_cast<long>(at.motor + Model::stride),
               0.0);
-    if (body.inv_mass == 0 || (!asleep.empty() && asleep[b])) continue;  // static or asleep: does not move
+    if (body.inv_mass == 0 || (!asleep.empty() && asleep[b])) return;  // static or asleep: does not move
     const Motor mo = motor_at(y, at.motor);
     const Mat r = rotation_matrix(mo);  // exact for a drifted motor (cl301.hpp)
     const Line momentum = line_at(y, at.momentum);
@@ -108,7 +110,7 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     // scales with |M| as the quaternion's q̇ does with |q|.
     put(dydt, at.motor, cga::widen<Motor::blades>(-0.5 * (mo * line(wb, r.transpose() * v))));
     put(dydt, at.momentum, wrench);
-  }
+  });
 }
 
 bool RigidBodies::renormalise(const Model& m, std::span<double> y) {

@@ -1,6 +1,7 @@
 #include "traditional/rigid_body.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -115,11 +116,12 @@ void RigidBodies::initial_state(const Model& m, std::span<double> y) {
 
 void RigidBodies::derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
                              std::span<const char> asleep) {
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+  // Each body's slice of dydt is its own: bodies in parallel (core/parallel.hpp).
+  core::for_each_index(m.bodies.size(), [&](std::size_t b) {
     const Body& body = m.bodies[b];
     const Layout at = layout(m, b);
     std::fill(dydt.begin() + static_cast<long>(at.x), dydt.begin() + static_cast<long>(at.x + m.stride), 0.0);
-    if (body.inv_mass == 0 || (!asleep.empty() && asleep[b])) continue;  // static or asleep: does not move
+    if (body.inv_mass == 0 || (!asleep.empty() && asleep[b])) return;  // static or asleep: does not move
     const Vec P = vec_at(y, at.p), L = vec_at(y, at.l);
     const Vec v = body.inv_mass * P;
     const core::BodyEffects& fx = m.effects;
@@ -161,7 +163,7 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     }
     put(dydt, at.p, force);
     put(dydt, at.l, torque);
-  }
+  });
 }
 
 bool RigidBodies::renormalise(const Model& m, std::span<double> y) {

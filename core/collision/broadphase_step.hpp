@@ -5,6 +5,7 @@
 // known candidates, less the pairs whose moving body misses a static body's
 // box. Members of the Collider (core/collision/collisions.hpp), defined here.
 #include "core/collision/collisions.hpp"
+#include "core/parallel.hpp"
 
 namespace gacompare::core {
 
@@ -12,9 +13,8 @@ template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
 requires collision::NarrowphaseBody<NarrowBody>
 auto Collider<Bodies, NarrowBody, Spheres>::poses(const Model& m, std::span<const double> y, BodyIndices group) const
     -> std::vector<collision::Pose> {
-  std::vector<collision::Pose> out;
-  out.reserve(group.size());
-  for (std::size_t k = 0; k < group.size(); ++k) out.push_back(Bodies::pose(m, y, k));
+  std::vector<collision::Pose> out(group.size());
+  for_each_index(group.size(), [&](std::size_t k) { out[k] = Bodies::pose(m, y, k); });
   return out;
 }
 
@@ -54,11 +54,17 @@ auto Collider<Bodies, NarrowBody, Spheres>::detect(State& state, const Model& m,
                                  : Broadphase<Spheres>(BroadphaseMethod::sweep).find(centres, radii, fixed, margin);
     pairs = std::move(found.pairs);
     d.candidates = std::move(found.candidates);
-    const auto away = [&](std::span<const double> grow) {
-      return [&, grow](const std::pair<int, int>& p) { return misses_static(pose, group, centres, p, grow); };
+    // Each pair's test on the run's threads (core/parallel.hpp), the erasing in order.
+    const auto drop_away = [&](std::vector<std::pair<int, int>>& list, std::span<const double> grow) {
+      std::vector<char> away(list.size());
+      for_each_index(list.size(), [&](std::size_t k) { away[k] = misses_static(pose, group, centres, list[k], grow); });
+      std::size_t kept = 0;
+      for (std::size_t k = 0; k < list.size(); ++k)
+        if (!away[k]) list[kept++] = list[k];
+      list.resize(kept);
     };
-    std::erase_if(pairs, away({}));
-    std::erase_if(d.candidates, away(margin));
+    drop_away(pairs, {});
+    drop_away(d.candidates, margin);
     state.counters.broadphase_candidates += static_cast<std::uint64_t>(found.counters.candidates);
     state.counters.broadphase_tree_updates += static_cast<std::uint64_t>(found.counters.tree_updates);
     state.counters.broadphase_pairs_kept += static_cast<std::uint64_t>(found.counters.pairs_kept);

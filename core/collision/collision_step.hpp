@@ -49,6 +49,7 @@
 #include "core/collision/time_of_impact_step.hpp"
 #include "core/dynamics/ode.hpp"
 #include "core/dynamics/simulator.hpp"
+#include "core/parallel.hpp"
 #include "core/collision/time_of_impact.hpp"
 
 #include <algorithm>
@@ -128,12 +129,12 @@ class CollisionStep {
     const auto& setup = c_.setup;
     const std::size_t n = setup.all_bodies.size();
     std::vector<double> margin(n);
+    for_each_index(n, [&](std::size_t k) {
+      if (!(s_.sleep.any() && s_.sleep.asleep[k])) margin[k] = c_.reach(m_, y0, setup.all_bodies, k, h);
+    });
     const double farthest = 0.5 * setup.min_inradius / kLeastSubStep;  // the most a body may move in one step
-    for (std::size_t k = 0; k < n; ++k) {
-      if (s_.sleep.any() && s_.sleep.asleep[k]) continue;
-      margin[k] = c_.reach(m_, y0, setup.all_bodies, k, h);
-      if (!(margin[k] <= farthest)) fail_too_fast(k, margin[k], t0, h);
-    }
+    for (std::size_t k = 0; k < n; ++k)
+      if (!(margin[k] <= farthest)) fail_too_fast(k, margin[k], t0, h);  // the first in body order
     return margin;
   }
 
@@ -211,7 +212,7 @@ class CollisionStep {
   // no point of either body moves farther than its reach between then and
   // t1. When that is positive (beyond the touching band, within which a pair
   // counts as touching) the pair cannot touch in the step: it links nothing
-  // and is not among its island's pairs (Collider::note_apart keeps those in
+  // and is not among its island's pairs (Collider::apart_beyond_reach keeps those in
   // Detection::apart, judged by the gaps along the face normals: a bound that
   // does not depend on which axis the pair remembers). Bounding spheres are
   // loose (a tetrahedron fills a small part of its sphere), and in a dense

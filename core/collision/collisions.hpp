@@ -48,7 +48,7 @@ struct Detection {
   // superset of the pairs the narrowphase tested; the islands' links.
   std::vector<std::pair<int, int>> candidates;
   // With margins: the pairs found farther apart than both bodies can move in
-  // the step (Collider::note_apart), in the order tested; they link nothing.
+  // the step (Collider::apart_beyond_reach), in the order tested; they link nothing.
   std::vector<std::pair<int, int>> apart;
 };
 
@@ -168,17 +168,21 @@ struct Collider {
   void narrow(State& state, BodyIndices group, const std::vector<collision::Pose>& pose, const std::vector<std::pair<int, int>>& pairs,
               Detection& d, Profile& profile, std::span<const double> margin = {}) const;
 
-  // A pair the world's detection found apart, kept in d.apart when it is
-  // farther apart than both bodies can move in the step (the islands' links
-  // leave it out: core/collision/collision_step.hpp, unlink_far): when some face
-  // normal separates it by more than that (collision::face_gap, which stops
-  // at the first that does; a round pair by its exact distance).
-  // Not simply by the gap the narrowphase stopped at: its first axis is the
-  // pair's remembered one when geometry is reused (setup.settings.reuse), and
-  // a link must not depend on that. A face axis's gap bounds the faces' best
-  // from below, so where it already exceeds the reaches it decides alone.
-  void note_apart(State& state, BodyIndices group, const std::vector<collision::Pose>& pose, const PairHit& h,
-                  std::span<const double> margin, Detection& d) const;
+  // Whether a pair the world's detection found apart is farther apart than
+  // both bodies can move in the step (then d.apart keeps it, and the
+  // islands' links leave it out: core/collision/collision_step.hpp,
+  // unlink_far): when some face normal separates it by more than that
+  // (collision::face_gap, which stops at the first that does; a round pair
+  // by its exact distance). Not simply by the gap the narrowphase stopped
+  // at: its first axis is the pair's remembered one when geometry is reused
+  // (setup.settings.reuse), and a link must not depend on that. A face axis's
+  // gap bounds the faces' best from below, so where it already exceeds the
+  // reaches it decides alone. Reads the shapes narrow() placed; counts its
+  // face tests and the shapes it built (without reuse) in the last two
+  // arguments, not in the state: it runs on the pool's threads.
+  bool apart_beyond_reach(const State& state, BodyIndices group, const std::vector<collision::Pose>& pose,
+                          const PairHit& h, std::span<const double> margin, std::uint64_t& face_tested,
+                          std::uint64_t& shapes) const;
 
   // f(va, vb) over world bodies wa and wb placed by pose_a() and pose_b(),
   // in the pair's own frame: with reuse, the bodies' shapes of this

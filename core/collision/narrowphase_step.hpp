@@ -6,6 +6,7 @@
 // impact's function). Members of the Collider (core/collision/collisions.hpp),
 // defined here.
 #include "core/collision/collisions.hpp"
+#include "core/parallel.hpp"
 
 namespace gacompare::core {
 
@@ -18,57 +19,101 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   ScopedStage timed(profile, Stage::narrowphase);
   const auto method = setup.settings.method == ContactMethod::report ? collision::Method::sat_then_report
                                                                      : collision::Method::sat_then_manifold;
+  const bool reuse = setup.settings.reuse;
   ++state.detection;
   if (group.data() == setup.all_bodies.data()) state.hints.next();  // the world's detection: a new round of pairs
+  // Each pair gets a slot of its own, so that the pairs can be tested on the
+  // run's threads and come out the same for any number of them
+  // (core/parallel.hpp): first, on this thread, the slots, the bodies' shapes
+  // (each placed once, in parallel) and the pairs' remembered axes; then the
+  // tests in parallel; then, in pair order, the hits, the links apart, the
+  // remembered axes and the counters.
+  struct Slot {
+    PairHit h;
+    collision::SatHint hint;
+    bool apart = false;
+    std::uint64_t face_tested = 0, shapes = 0;
+  };
+  std::vector<Slot> slots;
+  slots.reserve(pairs.size());
+  std::vector<int> to_place;  // group indices whose world body is placed in this detection
+  if (reuse && state.shapes.size() != setup.meshes.size())
+    state.shapes.resize(setup.meshes.size()), state.placed_in.assign(setup.meshes.size(), 0);
   for (const auto& pair : pairs) {
-    int i = pair.first, j = pair.second;  // plain ints: lambdas below capture them (clang 14 cannot capture a binding)
+    int i = pair.first, j = pair.second;
     if (setup.is_static[group[i]] && setup.is_static[group[j]]) continue;
     if (group[i] > group[j]) std::swap(i, j);  // a < b in the world: every group sees a pair the same way
     ++state.counters.narrowphase_pairs;
     if (group.data() != setup.all_bodies.data()) ++state.counters.island_narrowphase_pairs;
-    PairHit h{i, j, {}, {}};
-    if (setup.settings.reuse) {
-      const int a = group[i], b = group[j];
-      const Shape& sa = shape(state, a, [&] { return pose[i]; });
-      const Shape& sb = shape(state, b, [&] { return pose[j]; });
-      collision::SatHint& hint = state.hints.at(a, b);
-      h.sat = collision::narrowphase<NarrowBody>(sa, sb, method, &h.features, &hint);
-      state.counters.narrowphase_axes_kept += hint.kept;
-    } else {
-      h.sat = collision::narrowphase<NarrowBody>(placed(pose, group, i), placed(pose, group, j), method, &h.features);
-      state.counters.narrowphase_shapes += 2;
+    slots.push_back({PairHit{i, j, {}, {}}, {}});
+    if (!reuse) continue;
+    for (const int k : {i, j})
+      if (state.placed_in[group[k]] != state.detection) state.placed_in[group[k]] = state.detection, to_place.push_back(k);
+    slots.back().hint = state.hints.at(group[i], group[j]);
+  }
+  state.counters.narrowphase_shapes += to_place.size() + (reuse ? 0 : 2 * slots.size());
+  for_each_index(to_place.size(), [&](std::size_t u) {
+    const int k = to_place[u];
+    state.shapes[group[k]].place({setup.meshes[group[k]].get(), pose[k]});
+  });
+  for_each_index(
+      slots.size(),
+      [&](std::size_t u) {
+        Slot& s = slots[u];
+        PairHit& h = s.h;
+        if (reuse) {
+          h.sat = collision::narrowphase<NarrowBody>(state.shapes[group[h.a]], state.shapes[group[h.b]], method,
+                                                     &h.features, &s.hint);
+        } else {
+          h.sat = collision::narrowphase<NarrowBody>(placed(pose, group, h.a), placed(pose, group, h.b), method,
+                                                     &h.features);
+        }
+        // A pair within the touching band is in contact too (it has contacts):
+        // its yes/no is rounding's (core/collision/collision.hpp), and a box resting
+        // exactly on another fell for a step whenever it rounded to apart.
+        if (!h.sat.intersect && h.features.empty() && !margin.empty())
+          s.apart = apart_beyond_reach(state, group, pose, h, margin, s.face_tested, s.shapes);
+      },
+      8);
+  for (Slot& s : slots) {
+    state.counters.links_face_tested += s.face_tested;
+    state.counters.narrowphase_shapes += s.shapes;
+    if (reuse) {
+      state.counters.narrowphase_axes_kept += s.hint.kept;
+      state.hints.at(group[s.h.a], group[s.h.b]) = s.hint;
     }
-    // A pair within the touching band is in contact too (it has contacts):
-    // its yes/no is rounding's (core/collision/collision.hpp), and a box resting
-    // exactly on another fell for a step whenever it rounded to apart.
-    if (!h.sat.intersect && h.features.empty()) {
-      if (!margin.empty()) note_apart(state, group, pose, h, margin, d);
+    if (!s.h.sat.intersect && s.h.features.empty()) {
+      if (s.apart) d.apart.emplace_back(s.h.a, s.h.b);
       continue;
     }
-    d.max_depth = std::max(d.max_depth, h.sat.depth);
-    d.hits.push_back(std::move(h));
+    d.max_depth = std::max(d.max_depth, s.h.sat.depth);
+    d.hits.push_back(std::move(s.h));
   }
 }
 
 template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
 requires collision::NarrowphaseBody<NarrowBody>
-auto Collider<Bodies, NarrowBody, Spheres>::note_apart(State& state, BodyIndices group,
-                                                       const std::vector<collision::Pose>& pose, const PairHit& h,
-                                                       std::span<const double> margin, Detection& d) const -> void {
+auto Collider<Bodies, NarrowBody, Spheres>::apart_beyond_reach(const State& state, BodyIndices group,
+                                                               const std::vector<collision::Pose>& pose,
+                                                               const PairHit& h, std::span<const double> margin,
+                                                               std::uint64_t& face_tested,
+                                                               std::uint64_t& shapes) const -> bool {
   const int wa = group[h.a], wb = group[h.b];
   const double reach = margin[h.a] + margin[h.b] +
                        collision::kTouchingBand * collision::pair_scale(*setup.meshes[wa], *setup.meshes[wb]);
-  double gap = -h.sat.depth;
+  const double gap = -h.sat.depth;
   const bool face = h.sat.feature == collision::Feature::face_a || h.sat.feature == collision::Feature::face_b;
-  if (!(face && gap > reach))
-    gap = on_pair(
-        state, wa, wb, [&] { return pose[h.a]; }, [&] { return pose[h.b]; },
-        [&](const NarrowBody& va, const NarrowBody& vb) {
-          if (collision::round_pair(va, vb)) return gap;  // already exact
-          ++state.counters.links_face_tested;
-          return collision::face_gap(va, vb, reach);
-        });
-  if (gap > reach) d.apart.emplace_back(h.a, h.b);
+  if (face && gap > reach) return true;
+  // The bodies' shapes of this detection (placed above), or their own.
+  Shape own_a, own_b;
+  if (!setup.settings.reuse) own_a.place(placed(pose, group, h.a)), own_b.place(placed(pose, group, h.b)), shapes += 2;
+  const Shape& a = setup.settings.reuse ? state.shapes[wa] : own_a;
+  const Shape& b = setup.settings.reuse ? state.shapes[wb] : own_b;
+  const Vec3 o = collision::local_origin(a.position(), b.position());
+  const NarrowBody va(a, a.position() - o), vb(b, b.position() - o);
+  if (collision::round_pair(va, vb)) return gap > reach;  // already exact
+  ++face_tested;
+  return collision::face_gap(va, vb, reach) > reach;
 }
 
 template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>

@@ -319,7 +319,7 @@ PairContact separating_axis(const Body& a, const Body& b, bool early_exit = fals
 
 // The largest gap along the two bodies' face normals: a lower bound of their
 // distance (≤ 0 when no face separates them) that no remembered axis changes,
-// for the islands' links (core/collision/collisions.hpp, note_apart). Every face's
+// for the islands' links (core/collision/collisions.hpp, apart_beyond_reach). Every face's
 // support query, none of the edge pairs' (the costly part of the whole test).
 // With `enough`, it stops at the first gap above it:
 // whether some face normal separates the pair by more than `enough` is then

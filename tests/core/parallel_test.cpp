@@ -1,0 +1,55 @@
+// core/parallel.hpp: every index once, on any number of threads, and an
+// item's exception in the caller.
+#include "core/parallel.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <vector>
+
+namespace gacompare::core {
+namespace {
+
+// Restores one thread after each test: the pool is process-wide.
+class Parallel : public ::testing::Test {
+ protected:
+  void TearDown() override { set_threads(1); }
+};
+
+TEST_F(Parallel, EveryIndexRunsOnceForAnyThreadCountAndGrain) {
+  for (int t : {1, 2, 3, 8})
+    for (std::size_t n : {0u, 1u, 63u, 64u, 1000u, 12345u})
+      for (std::size_t grain : {1u, 7u, 32u}) {
+        set_threads(t);
+        std::vector<int> hits(n, 0);
+        for_each_index(n, [&](std::size_t k) { hits[k] += 1; }, grain);
+        for (std::size_t k = 0; k < n; ++k) ASSERT_EQ(hits[k], 1) << "threads " << t << " n " << n << " k " << k;
+      }
+}
+
+TEST_F(Parallel, ManyShortLoopsInARowNeitherLoseNorRepeatAnItem) {
+  set_threads(2);
+  std::vector<long> sums(200, 0);
+  for (int loop = 0; loop < 2000; ++loop)
+    for_each_index(sums.size(), [&](std::size_t k) { sums[k] += loop; }, 4);
+  for (long s : sums) EXPECT_EQ(s, 1999L * 2000 / 2);
+}
+
+TEST_F(Parallel, AnItemsExceptionReachesTheCaller) {
+  set_threads(2);
+  EXPECT_THROW(for_each_index(1000, [](std::size_t k) { if (k == 777) throw std::runtime_error("item 777"); }, 8),
+               std::runtime_error);
+  // The pool is still usable after it.
+  std::vector<int> hits(100, 0);
+  for_each_index(hits.size(), [&](std::size_t k) { hits[k] = 1; }, 4);
+  for (int h : hits) EXPECT_EQ(h, 1);
+}
+
+TEST_F(Parallel, ThreadCountsOutsideOneTo256AreRefused) {
+  EXPECT_THROW(set_threads(0), std::invalid_argument);
+  EXPECT_THROW(set_threads(257), std::invalid_argument);
+  EXPECT_EQ(threads(), 1);
+}
+
+}  // namespace
+}  // namespace gacompare::core
