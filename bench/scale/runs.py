@@ -7,15 +7,16 @@ import statistics
 import subprocess
 
 
-def compare(binary, scene, folder, backends):
+def compare(binary, scene, folder, backends, threads=1):
     """Writes `scene` beside `folder`, runs the backends on it in one
-    `gacompare compare` (one repeat, in the order given) and returns its
-    results.json runs by backend; a run that stopped stops the script with
-    its reason."""
+    `gacompare compare` (one repeat, in the order given, on `threads`
+    threads) and returns its results.json runs by backend; a run that
+    stopped stops the script with its reason."""
     path = folder + ".json"
     with open(path, "w") as f:
         json.dump(scene, f)
-    cmd = [binary, "compare", path, "--backends", ",".join(backends), "--repeat", "1", "--out", folder]
+    cmd = [binary, "compare", path, "--backends", ",".join(backends), "--repeat", "1", "--out", folder,
+           "--threads", str(threads)]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(folder, "results.json")) as f:
         runs = json.load(f)["runs"]

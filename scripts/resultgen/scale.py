@@ -1,7 +1,7 @@
 """docs/results/scale.md: boxes of 27 to 10,000 bodies through traditional,
 cga and Bullet (bench/scale/scale.py), what the narrowphase's reuse saves
-(bench/scale/reuse.py) and what sleeping saves on a settled pile
-(bench/scale/sleep.py)."""
+(bench/scale/reuse.py), what sleeping saves on a settled pile
+(bench/scale/sleep.py) and what a second thread buys (bench/scale/threads.py)."""
 import json
 import os
 import re
@@ -34,6 +34,21 @@ def generate(ctx):
         if m:
             headline.append({"finding": f"Cost ∝ N^p from 125 bodies up, {m.group(1)}", "value": f"p = {m.group(2)}",
                              "anchor": "#bodies-in-a-box"})
+    thread_args = ["--sizes", "1000", "--repeat", "1"] if ctx.quick else ["--sizes", "1000,10000", "--repeat", "3"]
+    threads = strip_command_line(ctx.run(["python3", "bench/scale/threads.py", "--binary", ctx.gacompare, *thread_args,
+                                          "--duration", "0.1"]))
+    two_threads = {}  # N -> (speed-up, same answer), traditional
+    for line in threads.splitlines():
+        cols = [c.strip() for c in line.strip("|").split("|")]
+        if len(cols) == 6 and cols[0].isdigit() and cols[1] == "traditional":
+            two_threads[int(cols[0])] = (cols[4], cols[5] == "yes")
+    if two_threads:
+        n = max(two_threads)
+        speedup, same = two_threads[n]
+        headline.append({"finding": f"{n:,} bodies in a box on two threads against one, traditional",
+                         "value": f"{speedup}× faster, the same answer bit for bit" if same
+                         else f"{speedup}×, and the answers DIFFER",
+                         "anchor": "#what-a-second-thread-buys"})
     asleep = {}  # N -> backend -> settled cost asleep / awake
     for line in sleep.splitlines():
         cols = [c.strip() for c in line.strip("|").split("|")]
@@ -45,4 +60,4 @@ def generate(ctx):
                                     "against the same pile awake",
                          "value": ", ".join(f"{b} {r:.1%}" for b, r in asleep[n].items()),
                          "anchor": "#what-sleeping-saves"})
-    return {"blocks": {"scale": scale, "reuse": reuse, "sleep": sleep}, "headline": headline}
+    return {"blocks": {"scale": scale, "reuse": reuse, "sleep": sleep, "threads": threads}, "headline": headline}
