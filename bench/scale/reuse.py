@@ -20,7 +20,6 @@ import os
 import statistics
 import subprocess
 import sys
-import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -42,13 +41,10 @@ def main():
     ap = runs.parser(__doc__)
     ap.add_argument("--duration", type=float, default=0.2)
     ap.add_argument("--seed", type=int, default=1)
-    args = ap.parse_args()
-    sizes = [int(s) for s in args.sizes.split(",")]
-    tmp = tempfile.mkdtemp(prefix="reuse-")
-    print(f"Command: `bench/scale/reuse.py --sizes {args.sizes} --repeat {args.repeat} --duration {args.duration} "
-          f"--seed {args.seed}` (seconds per simulated second, median (min–max) of {args.repeat}; counters of one run)\n")
-    print("| N | backend | reuse | narrowphase s | whole run s | narrowphase pairs | shapes built | axes kept |")
-    print("|---:|---|---|---:|---:|---:|---:|---:|")
+    args, sizes, tmp = runs.start(
+        ap, [("N", True), ("backend", False), ("reuse", False), ("narrowphase s", True), ("whole run s", True),
+             ("narrowphase pairs", True), ("shapes built", True), ("axes kept", True)],
+        " (seconds per simulated second, median (min–max) of the repeats; counters of one run)")
     for n in sizes:
         data = {}
         for rep in range(args.repeat):

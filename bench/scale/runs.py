@@ -5,6 +5,8 @@ import json
 import os
 import statistics
 import subprocess
+import sys
+import tempfile
 
 
 def compare(binary, scene, folder, backends, threads=1):
@@ -37,3 +39,17 @@ def parser(doc, sizes="125,1000", repeat=3):
     ap.add_argument("--sizes", default=sizes)
     ap.add_argument("--repeat", type=int, default=repeat)
     return ap
+
+
+def start(ap, columns, note=""):
+    """Parses the options, prints the command that gives this table (every
+    option but the binary, defaults included) and the table's header row
+    (`columns`: (title, right-aligned) pairs); returns the options, the sizes
+    and a scratch folder."""
+    args = ap.parse_args()
+    script = os.path.basename(sys.argv[0])
+    options = " ".join(f"--{k.replace('_', '-')} {v}" for k, v in vars(args).items() if k != "binary")
+    print(f"Command: `bench/scale/{script} {options}`{note}\n")
+    print("| " + " | ".join(title for title, _ in columns) + " |")
+    print("|" + "|".join("---:" if right else "---" for _, right in columns) + "|")
+    return args, [int(n) for n in args.sizes.split(",")], tempfile.mkdtemp(prefix=script.split(".")[0] + "-")

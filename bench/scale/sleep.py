@@ -28,7 +28,6 @@ import math
 import os
 import statistics
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import runs  # noqa: E402
@@ -78,15 +77,10 @@ def main():
     ap.add_argument("--settle", type=float, default=1.5)
     ap.add_argument("--span", type=float, default=2.0)
     ap.add_argument("--span-asleep", type=float, default=30.0)
-    args = ap.parse_args()
-    sizes = [int(s) for s in args.sizes.split(",")]
+    args, sizes, tmp = runs.start(ap, [("N", True), ("backend", False), ("settled s per simulated s, sleep off", True),
+                                       ("sleep on", True), ("on / off", True), ("sleeping body-steps", True),
+                                       ("islands slept", True), ("largest offset on vs off (m)", True)])
     backends = ["traditional", "cga"]
-    tmp = tempfile.mkdtemp(prefix="sleep-")
-    print(f"Command: `bench/scale/sleep.py --sizes {args.sizes} --layers {args.layers} --repeat {args.repeat} "
-          f"--settle {args.settle} --span {args.span} --span-asleep {args.span_asleep}`\n")
-    print("| N | backend | settled s per simulated s, sleep off | sleep on | on / off | "
-          "sleeping body-steps | islands slept | largest offset on vs off (m) |")
-    print("|---:|---|---:|---:|---:|---:|---:|---:|")
     for n in sizes:
         cost = {(b, s): [] for b in backends for s in (False, True)}
         last = {}

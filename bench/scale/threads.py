@@ -18,7 +18,6 @@ import json
 import os
 import statistics
 import sys
-import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -37,14 +36,9 @@ def main():
     ap = runs.parser(__doc__, sizes="1000")
     ap.add_argument("--duration", type=float, default=0.2)
     ap.add_argument("--seed", type=int, default=1)
-    args = ap.parse_args()
-    sizes = [int(s) for s in args.sizes.split(",")]
+    args, sizes, tmp = runs.start(ap, [("N", True), ("backend", False), ("1 thread, s per simulated s", True),
+                                       ("2 threads", True), ("speed-up", True), ("same answer", False)])
     backends = ["traditional", "cga"]
-    tmp = tempfile.mkdtemp(prefix="threads-")
-    print(f"Command: `bench/scale/threads.py --sizes {args.sizes} --repeat {args.repeat} --duration {args.duration} "
-          f"--seed {args.seed}`\n")
-    print("| N | backend | 1 thread, s per simulated s | 2 threads | speed-up | same answer |")
-    print("|---:|---|---:|---:|---:|---|")
     for n in sizes:
         scene = box_scene.scene(n, args.seed, args.duration, args.duration)
         wall = {(b, t): [] for b in backends for t in (1, 2)}
