@@ -73,7 +73,9 @@
 //     resting contacts by ½ h Δv, core/collision/collisions.hpp friction_displacement),
 //     but positions ½ a h t off the exact parabola (short when braking: a
 //     stopping distance ½ v₀ h short).
-//     Damping 0. Sleeping disabled (DISABLE_DEACTIVATION on every dynamic body).
+//     Damping 0. Sleeping disabled (DISABLE_DEACTIVATION on every dynamic body),
+//     unless the scene's collisions effect asks for it: then Bullet's island
+//     deactivation with the scene's speed and time (core/collision/sleep.hpp).
 //   - Margin 0 on every hull: the hull is the mesh, not the mesh grown by Bullet's
 //     0.04 m skin. With margin 0 GJK alone would give one contact point per step;
 //     initializePolyhedralFeatures() turns on Bullet's polyhedral face clipping,
@@ -358,6 +360,10 @@ core::Run simulate_bullet(const core::Scene& scene, const core::Model& model) {
   const double step = collisions ? collisions->step : kDefaultStep;
 
   const MaterialHooks hooks;
+  // Bullet reads its sleeping time from a global; every run sets it, so no
+  // run inherits another's (2 s, Bullet's own default, when the scene does
+  // not ask for sleeping: every body then has deactivation disabled anyway).
+  gDeactivationTime = collisions && collisions->sleep.on ? collisions->sleep.time : 2.0;
   auto world = std::make_unique<World>();
   btContactSolverInfo& info = world->world.getSolverInfo();
   info.m_splitImpulsePenetrationThreshold = 0;  // every penetration by split impulse (top of file)
@@ -393,7 +399,17 @@ core::Run simulate_bullet(const core::Scene& scene, const core::Model& model) {
     if (!fixed) {
       rb.setLinearVelocity(to_bullet(body.velocity));
       rb.setAngularVelocity(to_bullet(body.angular_velocity));
-      rb.setActivationState(DISABLE_DEACTIVATION);
+      if (collisions && collisions->sleep.on) {
+        // The scene's sleeping in Bullet's terms: |v| below the speed and
+        // |ω| below it over the bounding radius, so that |v| + ρ|ω| stays
+        // within twice it (ours bounds the sum by it); the time is Bullet's
+        // global gDeactivationTime, set below.
+        double rho = 0;
+        for (const Vec3& v : mesh.vertices()) rho = std::max(rho, v.norm());
+        rb.setSleepingThresholds(collisions->sleep.speed, collisions->sleep.speed / std::max(rho, 1e-12));
+      } else {
+        rb.setActivationState(DISABLE_DEACTIVATION);
+      }
       rb.setFlags(BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
       if (collisions) {
         const double r = bm.inradius;

@@ -45,14 +45,24 @@ std::size_t particle_count(const Scene& s) {
 // speed of its rim), what gravity gives it falling to the lowest static body
 // (energy: v² = 2 |g| h; all the way through the duration when nothing static
 // is below it), and the impulse of the forces applied to it.
-double top_speed(const Scene& s, const std::vector<BodyScale>& scale, std::size_t i) {
+// The lowest point of any static body along gravity (its height against
+// gravity's direction), +inf without gravity or static bodies: once per
+// scene, not per body (a per-body search made 100,000 bodies take minutes).
+double floor_of(const Scene& s, const std::vector<BodyScale>& scale) {
+  double floor = INFINITY;
+  const auto* g = s.find_effect<Gravity>();
+  if (!g || !(g->g.stableNorm() > 0)) return floor;
+  const Vec3 down = g->g.normalized();
+  for (std::size_t k = 0; k < s.bodies.size(); ++k)
+    if (s.bodies[k].is_static) floor = std::min(floor, -down.dot(s.bodies[k].position) - scale[k].radius);
+  return floor;
+}
+
+double top_speed(const Scene& s, const std::vector<BodyScale>& scale, std::size_t i, double floor) {
   const Body& b = s.bodies[i];
   double v = b.velocity.stableNorm() + b.angular_velocity.stableNorm() * scale[i].radius;
   if (const auto* g = s.find_effect<Gravity>(); g && g->g.stableNorm() > 0) {
     const Vec3 down = g->g.normalized();
-    double floor = INFINITY;  // the lowest point of any static body, along g
-    for (std::size_t k = 0; k < s.bodies.size(); ++k)
-      if (s.bodies[k].is_static) floor = std::min(floor, -down.dot(s.bodies[k].position) - scale[k].radius);
     const double height = -down.dot(b.position) - floor;
     const double free_fall = g->g.stableNorm() * s.duration;
     v += std::isfinite(floor) ? std::min(free_fall, std::sqrt(2 * g->g.stableNorm() * std::max(0.0, height))) : free_fall;
@@ -125,10 +135,11 @@ std::optional<Refusal> over_step_budget(const Scene& s, const Model& model) {
   for (std::size_t i = 0; i < s.bodies.size(); ++i) scale.push_back(body_scale(s.bodies[i], model.bodies[i]));
   std::size_t thinnest = 0, fastest = 0;
   double v = 0;
+  const double floor = floor_of(s, scale);
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     if (scale[i].inradius < scale[thinnest].inradius) thinnest = i;
     if (s.bodies[i].is_static) continue;
-    if (const double vi = top_speed(s, scale, i); vi > v) v = vi, fastest = i;
+    if (const double vi = top_speed(s, scale, i, floor); vi > v) v = vi, fastest = i;
   }
   // The collision loop moves no body more than half the smallest inradius in a
   // step (core/collision/collisions.hpp): a body thinner than the penetration tolerance
