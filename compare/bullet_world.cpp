@@ -462,7 +462,8 @@ core::Run simulate_bullet(const core::Scene& scene, const core::Model& model) {
     }
   };
 
-  std::uint64_t steps = 0, manifolds = 0, points = 0;
+  std::uint64_t steps = 0, manifolds = 0, points = 0, asleep_steps = 0;
+  const bool sleeping = collisions && collisions->sleep.on;
   const auto times = core::output_times(scene);
   run.samples.reserve(times.size());
   const auto start = std::chrono::steady_clock::now();
@@ -492,6 +493,8 @@ core::Run simulate_bullet(const core::Scene& scene, const core::Model& model) {
         const int c = world->dispatcher.getManifoldByIndexInternal(m)->getNumContacts();
         if (c > 0) ++manifolds, points += static_cast<std::uint64_t>(c);
       }
+      if (sleeping)
+        for (const auto& bb : world->bodies) asleep_steps += bb.body->getActivationState() == ISLAND_SLEEPING;
       if (taken != 1) {
         std::ostringstream msg;
         msg << "bullet took " << taken << " steps instead of 1, stage integrate, between t=" << t0 << " and t=" << t1;
@@ -515,6 +518,8 @@ core::Run simulate_bullet(const core::Scene& scene, const core::Model& model) {
   // their points, summed over the steps.
   run.counters["bullet_contact_manifolds"] = manifolds;
   run.counters["bullet_contact_points"] = points;
+  // As our sleeping_body_steps (core/collision/sleep.hpp): bodies asleep, summed over the steps.
+  if (sleeping) run.counters["sleeping_body_steps"] = asleep_steps;
   return run;
 }
 

@@ -22,8 +22,9 @@ settling, in both runs, would swamp it. Settings and durations
 alternate within each repeat (off, on, off, on, ...), and the backends'
 order alternates between repeats, so a slow spell of a shared machine falls
 on both. Quoted: medians over the repeats (min-max), the ratio on/off of
-the settled cost, and the largest distance between a body's final position
-with sleep on and off (from the longer runs).
+the settled cost, and the largest distance between a body's position with
+sleep on and off at the end of the shorter runs (`--settle`). Bullet counts
+no sleeping islands (–).
 """
 import math
 import os
@@ -95,15 +96,16 @@ def main():
                     walls[d] = run(args, pile(n, args.layers, d, sleep), folder, order)
                 for b in backends:
                     cost[(b, sleep)].append((walls[args.settle + span][b]["wall"] - walls[args.settle][b]["wall"]) / span)
-                last[sleep] = walls[args.settle + span]
+                last[sleep] = walls
         for b in backends:
             off, on = cost[(b, False)], cost[(b, True)]
             ratio = statistics.median(on) / statistics.median(off)
-            fa, fb = last[True][b]["final"], last[False][b]["final"]
+            # Positions compared at the same time, the end of the shorter runs.
+            fa, fb = last[True][args.settle][b]["final"], last[False][args.settle][b]["final"]
             offset = max((math.dist(fa[k], fb[k]) for k in fa if k in fb), default=float("nan"))
-            c = last[True][b]["counters"]
-            print(f"| {n} | {b} | {cell(off)} | {cell(on)} | {ratio:.3f} | {c.get('sleeping_body_steps', 0)} | "
-                  f"{c.get('sleep_islands', 0)} | {offset:.2g} |")
+            c = last[True][args.settle + args.span_asleep][b]["counters"]
+            print(f"| {n} | {b} | {cell(off)} | {cell(on)} | {ratio:.3f} | {c.get('sleeping_body_steps', '–')} | "
+                  f"{c.get('sleep_islands', '–')} | {offset:.2g} |")
 
 
 if __name__ == "__main__":
