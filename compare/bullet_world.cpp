@@ -494,7 +494,8 @@ core::Run simulate_bullet(const core::Scene& scene, const core::Model& model) {
         if (c > 0) ++manifolds, points += static_cast<std::uint64_t>(c);
       }
       if (sleeping)
-        for (const auto& bb : world->bodies) asleep_steps += bb.body->getActivationState() == ISLAND_SLEEPING;
+        for (const auto& bb : world->bodies)  // a static body is always ISLAND_SLEEPING in Bullet
+          asleep_steps += !bb.body->isStaticObject() && bb.body->getActivationState() == ISLAND_SLEEPING;
       if (taken != 1) {
         std::ostringstream msg;
         msg << "bullet took " << taken << " steps instead of 1, stage integrate, between t=" << t0 << " and t=" << t1;
