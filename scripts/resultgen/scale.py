@@ -34,7 +34,7 @@ def generate(ctx):
         if m:
             headline.append({"finding": f"Cost ∝ N^p from 125 bodies up, {m.group(1)}", "value": f"p = {m.group(2)}",
                              "anchor": "#bodies-in-a-box"})
-    thread_args = ["--sizes", "1000", "--repeat", "1"] if ctx.quick else ["--sizes", "1000,10000", "--repeat", "3"]
+    thread_args = ["--sizes", "1000", "--repeat", "3"] if ctx.quick else ["--sizes", "1000,10000", "--repeat", "3"]
     threads = strip_command_line(ctx.run(["python3", "bench/scale/threads.py", "--binary", ctx.gacompare, *thread_args,
                                           "--duration", "0.1"]))
     two_threads = {}  # N -> (speed-up, same answer), traditional
