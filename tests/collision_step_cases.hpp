@@ -271,8 +271,9 @@ TYPED_TEST_P(CollisionStepCases, DenseOutputPairsRestartAfterAnImpact) {
   }
 }
 
-// The stages' threads (core/parallel.hpp) change nothing: 80 cubes dropped
-// onto a slab with seeded spins, 0.4 s, run on one thread and on two, give
+// The stages' threads (core/parallel.hpp) change nothing: 80 cubes, spheres
+// and capsules dropped onto a slab with seeded spins, 0.4 s, run on one
+// thread and on two, give
 // every sample and every counter bit for bit (80 bodies: the derivative's and
 // the poses' loops split, not only the narrowphase's pairs).
 TYPED_TEST_P(CollisionStepCases, TwoThreadsGiveTheSameRunBitForBit) {
@@ -289,6 +290,8 @@ TYPED_TEST_P(CollisionStepCases, TwoThreadsGiveTheSameRunBitForBit) {
     b.name.insert(0, 1, 'c');  // not "c" + ...: GCC 12 -Wrestrict, bug 105651
     b.position = Eigen::Vector3d(-1.6 + 0.4 * (k % 9), -1.6 + 0.4 * (k / 9 % 9), 0.3);
     b.angular_velocity = Eigen::Vector3d(spin(rng), spin(rng), spin(rng));
+    if (k % 4 == 1) b.shape = core::SphereShape{0.1};  // round shapes take other narrowphase paths
+    if (k % 4 == 2) b.shape = core::CapsuleShape{0.06, 0.12};
     s.bodies.push_back(b);
   }
   s.duration = 0.4;

@@ -52,9 +52,19 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
     slots.back().hint = state.hints.at(group[i], group[j]);
   }
   state.counters.narrowphase_shapes += to_place.size() + (reuse ? 0 : 2 * slots.size());
+  // A shape builds its edges (and, for the report's detector, its prepared
+  // triangles) on first use; on more than one thread several pairs may ask
+  // at once, so they are built here, with the placing, instead (the same
+  // numbers either way: only when they are built changes).
+  const bool shared = threads() > 1;
+  const bool report = method == collision::Method::sat_then_report;
   for_each_index(to_place.size(), [&](std::size_t u) {
     const int k = to_place[u];
-    state.shapes[group[k]].place({setup.meshes[group[k]].get(), pose[k]});
+    auto& shape = state.shapes[group[k]];
+    shape.place({setup.meshes[group[k]].get(), pose[k]});
+    if (!shared || shape.is_sphere() || shape.is_capsule()) return;  // a round shape has neither
+    shape.edges();
+    if (report && !setup.meshes[group[k]]->triangles().empty()) shape.triangle(0);
   });
   for_each_index(
       slots.size(),
