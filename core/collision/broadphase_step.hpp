@@ -47,7 +47,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::detect(State& state, const Model& m,
     for (std::size_t k = 0; k < n; ++k) {
       radii[k] = setup.sphere_radius[group[k]];
       // A sleeping body is held like a static one (core/collision/sleep.hpp).
-      fixed[k] = setup.is_static[group[k]] || (state.sleep.any() && state.sleep.asleep[group[k]]);
+      fixed[k] = setup.is_static[group[k]] || state.sleep.is_asleep(static_cast<std::size_t>(group[k]));
     }
     BroadphaseResult found = group.data() == setup.all_bodies.data()
                                  ? state.broadphase.find(centres, radii, fixed, margin)

@@ -130,7 +130,7 @@ class CollisionStep {
     const std::size_t n = setup.all_bodies.size();
     std::vector<double> margin(n);
     for_each_index(n, [&](std::size_t k) {
-      if (!(s_.sleep.any() && s_.sleep.asleep[k])) margin[k] = c_.reach(m_, y0, setup.all_bodies, k, h);
+      if (!s_.sleep.is_asleep(k)) margin[k] = c_.reach(m_, y0, setup.all_bodies, k, h);
     });
     const double farthest = 0.5 * setup.min_inradius / kLeastSubStep;  // the most a body may move in one step
     for (std::size_t k = 0; k < n; ++k)

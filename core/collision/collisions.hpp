@@ -240,6 +240,10 @@ struct Collider {
 
   template <class PoseOf>
   const Shape& shape(State& state, int b, PoseOf&& pose_of) const;
+  // f(va, vb) over two placed shapes in the pair's own frame (its origin
+  // between them: collision::local_origin).
+  template <class F>
+  static auto in_pair_frame(const Shape& a, const Shape& b, F&& f);
 };
 
 }  // namespace gacompare::core

@@ -117,13 +117,20 @@ auto Collider<Bodies, NarrowBody, Spheres>::apart_beyond_reach(const State& stat
   // The bodies' shapes of this detection (placed above), or their own.
   Shape own_a, own_b;
   if (!setup.settings.reuse) own_a.place(placed(pose, group, h.a)), own_b.place(placed(pose, group, h.b)), shapes += 2;
-  const Shape& a = setup.settings.reuse ? state.shapes[wa] : own_a;
-  const Shape& b = setup.settings.reuse ? state.shapes[wb] : own_b;
+  return in_pair_frame(setup.settings.reuse ? state.shapes[wa] : own_a, setup.settings.reuse ? state.shapes[wb] : own_b,
+                       [&](const NarrowBody& va, const NarrowBody& vb) {
+                         if (collision::round_pair(va, vb)) return gap > reach;  // already exact
+                         ++face_tested;
+                         return collision::face_gap(va, vb, reach) > reach;
+                       });
+}
+
+template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
+requires collision::NarrowphaseBody<NarrowBody>
+template <class F>
+auto Collider<Bodies, NarrowBody, Spheres>::in_pair_frame(const Shape& a, const Shape& b, F&& f) {
   const Vec3 o = collision::local_origin(a.position(), b.position());
-  const NarrowBody va(a, a.position() - o), vb(b, b.position() - o);
-  if (collision::round_pair(va, vb)) return gap > reach;  // already exact
-  ++face_tested;
-  return collision::face_gap(va, vb, reach) > reach;
+  return f(NarrowBody(a, a.position() - o), NarrowBody(b, b.position() - o));
 }
 
 template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
@@ -136,10 +143,8 @@ auto Collider<Bodies, NarrowBody, Spheres>::on_pair(State& state, int wa, int wb
     own_a.place({setup.meshes[wa].get(), pose_a()}), own_b.place({setup.meshes[wb].get(), pose_b()});
     state.counters.narrowphase_shapes += 2;
   }
-  const Shape& a = setup.settings.reuse ? shape(state, wa, pose_a) : own_a;
-  const Shape& b = setup.settings.reuse ? shape(state, wb, pose_b) : own_b;
-  const Vec3 o = collision::local_origin(a.position(), b.position());
-  return f(NarrowBody(a, a.position() - o), NarrowBody(b, b.position() - o));
+  return in_pair_frame(setup.settings.reuse ? shape(state, wa, pose_a) : own_a,
+                       setup.settings.reuse ? shape(state, wb, pose_b) : own_b, f);
 }
 
 template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>

@@ -87,12 +87,9 @@ struct SleepState {
     return woken;
   }
 
-  // Static or asleep, per world body: what the broadphase holds fixed.
-  std::vector<char> fixed(std::span<const char> is_static) const {
-    std::vector<char> out(is_static.begin(), is_static.end());
-    for (std::size_t k = 0; k < out.size(); ++k) out[k] = out[k] || asleep[k];
-    return out;
-  }
+  // Whether world body k sleeps (false for every body of a run without
+  // sleeping, whose vectors are empty).
+  bool is_asleep(std::size_t k) const { return sleeping > 0 && asleep[k]; }
 };
 
 }  // namespace gacompare::core

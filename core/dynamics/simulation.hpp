@@ -115,8 +115,13 @@ struct Simulation {
       if (state.sleep.any()) {
         // Sleeping bodies do not move: their derivative is zero and not
         // computed (core/collision/sleep.hpp).
+        // The terms skipped, counted once per step rather than per evaluation.
+        std::uint64_t pushes_asleep = 0;
+        for (const auto& push : m.compiled->effects.pushes) pushes_asleep += state.sleep.is_asleep(push.body);
         auto awake = [&](double tt, std::span<const double> yy, std::span<double> dy) {
           derivative(m, tt, yy, dy, profile, state.sleep.asleep);
+          m.asleep_body_evaluations += state.sleep.sleeping;
+          m.asleep_push_evaluations += pushes_asleep;
         };
         solver.advance(awake, t, t1, y, profile, after);
       } else {
@@ -164,7 +169,7 @@ struct Simulation {
     return m.bodies.bodies.empty() ? Particles::velocity_of(m.particles) : std::vector<int>{};
   }
   // `asleep`: empty, or a flag per body; a sleeping body's derivative is
-  // zero and not computed, and its terms are not counted.
+  // zero and not computed (the caller counts the terms it skipped).
   static void derivative(const Model& m, double t, std::span<const double> y, std::span<double> dydt,
                          Profile& profile, std::span<const char> asleep = {}) {
     ++m.force_evaluations;
@@ -173,9 +178,6 @@ struct Simulation {
       ScopedStage timed(profile, Stage::forces);
       Bodies::derivative(m.bodies, t, y.subspan(m.offset), dydt.subspan(m.offset), asleep);
     }
-    if (asleep.empty()) return;
-    for (const char a : asleep) m.asleep_body_evaluations += a ? 1 : 0;
-    for (const auto& push : m.compiled->effects.pushes) m.asleep_push_evaluations += asleep[push.body] ? 1 : 0;
   }
   static bool after_step(const Model& m, std::vector<double>& y, Profile& profile) {
     const bool projected = Particles::after_step(m.particles, y, profile);
