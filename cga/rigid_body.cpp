@@ -1,5 +1,7 @@
 #include "cga/rigid_body.hpp"
 
+#include "cga/rotation_group.hpp"
+#include "core/dynamics/lie_bodies.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 
@@ -167,6 +169,35 @@ double RigidBodies::error_ratio(const Model& m, std::span<const double> y, std::
     worse(ratio(length(apply(body.inv_inertia, sandwich(reverse(u1), biv_at(err, at.l)))), w0, w1));
   }
   return worst;
+}
+
+// Through RotorGroup. The module's vectors are axial: L and I⁻¹ turn from
+// bivector components by their dual (axial(), on_bivectors, P its own
+// inverse); Π = R̃ L R and L = R Π R̃ through RotorGroup::matrix, the rotation
+// of R / √(R R̃), as the derivative reads a drifted rotor.
+void RigidBodies::group_step(const Model& m, core::SolverMethod method, double t, double h, std::span<const double> y,
+                             std::span<double> out, std::span<double> err) {
+  using G = RotorGroup;
+  const auto body_of = [&](std::size_t b) {
+    const Body& body = m.bodies[b];
+    return core::GroupBody{body.inv_mass, body.mass, on_bivectors(body.inv_inertia)};
+  };
+  const auto read = [](std::span<const double> s, std::size_t b) {
+    const Layout at = layout(b);
+    core::lie::BodyState<G> state;
+    state.rotation.rotation = rotor_at(s, at.rot);
+    state.rotation.momentum = G::matrix(state.rotation.rotation).transpose() * to_eigen(axial(biv_at(s, at.l)));
+    state.translation = {to_eigen(vec_at(s, at.x)), to_eigen(vec_at(s, at.p))};
+    return state;
+  };
+  const auto write = [](std::span<double> s, std::size_t b, const core::lie::BodyState<G>& state) {
+    const Layout at = layout(b);
+    put(s, at.x, vector3(state.translation.x));
+    put(s, at.p, vector3(state.translation.momentum));
+    put(s, at.rot, state.rotation.rotation);
+    put(s, at.l, bivector_of_axial(vector3(G::matrix(state.rotation.rotation) * state.rotation.momentum)));
+  };
+  core::group_step_bodies<G>(m.effects, m.bodies.size(), Model::stride, method, t, h, y, out, err, body_of, read, write);
 }
 
 void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sample& s) {

@@ -59,6 +59,10 @@ struct RigidBodies {
   static double rotation_drift(const Model& m, std::span<const double> y);
   static double error_ratio(const Model& m, std::span<const double> y, std::span<const double> ynew,
                             std::span<const double> err, double abs, double rel);
+  // A Lie-group method's step (core/dynamics/rigid_body.hpp) through cga/rotation_group.hpp: the rotor, exp of
+  // a bivector.
+  static void group_step(const Model& m, core::SolverMethod method, double t, double h, std::span<const double> y,
+                         std::span<double> out, std::span<double> err);
 
   // --- collisions (§2.4–2.5); called only when the scene lists the effect ---
   static collision::Pose pose(const Model& m, std::span<const double> y, std::size_t b);

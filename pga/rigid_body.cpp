@@ -1,6 +1,8 @@
 #include "pga/rigid_body.hpp"
 
+#include "core/dynamics/lie_bodies.hpp"
 #include "core/error.hpp"
+#include "pga/rotation_group.hpp"
 #include "core/parallel.hpp"
 
 #include <algorithm>
@@ -161,6 +163,36 @@ double RigidBodies::error_ratio(const Model& m, std::span<const double> y, std::
     worse(ratio((body.inv_inertia * (rm1.transpose() * line_moment(dp))).norm(), w0.norm(), w1.norm()));
   }
   return worst;
+}
+
+// Through MotorGroup, on the whole motor M = T(x) R: the body-frame turn
+// M exp(θ) = T(x) R exp(θ) keeps the translation, so the module steps M as it
+// is, and the new centre x' then replaces it, M' = T(x') R' (as build() makes
+// a motor). Π = Rᵀ L and L = R Π through MotorGroup::matrix, exact for a
+// drifted motor; L and P are the momentum line's moment and direction.
+void RigidBodies::group_step(const Model& m, core::SolverMethod method, double t, double h, std::span<const double> y,
+                             std::span<double> out, std::span<double> err) {
+  using G = MotorGroup;
+  const auto body_of = [&](std::size_t b) {
+    const Body& body = m.bodies[b];
+    return core::GroupBody{body.inv_mass, body.mass, body.inv_inertia};
+  };
+  const auto read = [](std::span<const double> s, std::size_t b) {
+    const Layout at = layout(b);
+    const Motor mo = motor_at(s, at.motor);
+    const Line momentum = line_at(s, at.momentum);
+    core::lie::BodyState<G> state;
+    state.rotation = {mo, G::matrix(mo).transpose() * line_moment(momentum)};
+    state.translation = {translation(mo), line_direction(momentum)};
+    return state;
+  };
+  const auto write = [](std::span<double> s, std::size_t b, const core::lie::BodyState<G>& state) {
+    const Layout at = layout(b);
+    const Motor& turned = state.rotation.rotation;
+    put(s, at.motor, cga::widen<Motor::blades>(translator(state.translation.x) * project<1 | kEuclideanLine>(turned)));
+    put(s, at.momentum, line(state.translation.momentum, G::matrix(turned) * state.rotation.momentum));
+  };
+  core::group_step_bodies<G>(m.effects, m.bodies.size(), Model::stride, method, t, h, y, out, err, body_of, read, write);
 }
 
 void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sample& s) {

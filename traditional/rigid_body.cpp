@@ -1,10 +1,13 @@
 #include "traditional/rigid_body.hpp"
 
+#include "core/dynamics/lie_bodies.hpp"
 #include "core/error.hpp"
+#include "traditional/rotation_group.hpp"
 #include "core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace gacompare::traditional {
 
@@ -229,6 +232,45 @@ double RigidBodies::error_ratio(const Model& m, std::span<const double> y, std::
     worse(ratio((body.inv_inertia * (r1.transpose() * vec_at(err, at.l))).norm(), w0.norm(), w1.norm()));
   }
   return worst;
+}
+
+namespace {
+// Through group G (MatrixGroup or QuaternionGroup). Π = Rᵀ L and L = R Π
+// through G::matrix, the rotation the state stands for (a quaternion's is
+// that of q/|q|, as everywhere in this backend).
+template <class G>
+void group_step_in(const RigidBodies::Model& m, core::SolverMethod method, double t, double h,
+                   std::span<const double> y, std::span<double> out, std::span<double> err) {
+  const auto body_of = [&](std::size_t b) {
+    const RigidBodies::Body& body = m.bodies[b];
+    return core::GroupBody{body.inv_mass, body.mass, body.inv_inertia};
+  };
+  const auto read = [&](std::span<const double> s, std::size_t b) {
+    const Layout at = layout(m, b);
+    core::lie::BodyState<G> out;
+    if constexpr (std::is_same_v<G, MatrixGroup>) out.rotation.rotation = matrix_at(s, at.rot);
+    else out.rotation.rotation = quat_at(s, at.rot);
+    out.rotation.momentum = G::matrix(out.rotation.rotation).transpose() * vec_at(s, at.l);
+    out.translation = {vec_at(s, at.x), vec_at(s, at.p)};
+    return out;
+  };
+  const auto write = [&](std::span<double> s, std::size_t b, const core::lie::BodyState<G>& state) {
+    const Layout at = layout(m, b);
+    const auto& r = state.rotation.rotation;
+    put(s, at.x, state.translation.x);
+    put(s, at.p, state.translation.momentum);
+    if constexpr (std::is_same_v<G, MatrixGroup>) put(s, at.rot, r);
+    else s[at.rot] = r.w(), s[at.rot + 1] = r.x(), s[at.rot + 2] = r.y(), s[at.rot + 3] = r.z();
+    put(s, at.l, Vec(G::matrix(r) * state.rotation.momentum));
+  };
+  core::group_step_bodies<G>(m.effects, m.bodies.size(), m.stride, method, t, h, y, out, err, body_of, read, write);
+}
+}  // namespace
+
+void RigidBodies::group_step(const Model& m, core::SolverMethod method, double t, double h, std::span<const double> y,
+                             std::span<double> out, std::span<double> err) {
+  if (m.rotation == core::Rotation::matrix) group_step_in<MatrixGroup>(m, method, t, h, y, out, err);
+  else group_step_in<QuaternionGroup>(m, method, t, h, y, out, err);
 }
 
 void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sample& s) {

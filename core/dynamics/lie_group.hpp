@@ -40,9 +40,12 @@
 // serves p = 4 and 5.
 //
 // Torque-free, ω does not depend on R: the stage rotations are then never
-// formed, and a step costs its final exp and compositions only. A later
-// scene-solver method can call step() per body on each backend's rotation
-// (core/dynamics/rigid_body.hpp's state packs the same R and L = R Π).
+// formed, and a step costs its final exp and compositions only.
+//
+// A scene's solver (solver.method rkmk4, rkmk45, crouch_grossman4) steps each
+// body through body_step() below: the rotation and Π as above, the centre x
+// and the linear momentum P additively with the same tableau (each backend's
+// rigid_body.cpp group_step, on its own R and L = R Π).
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -51,6 +54,7 @@
 #include <concepts>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 #include <utility>
@@ -85,6 +89,9 @@ struct FreeBody {
   // World torque τ(t, R, L), R the rotation matrix and L = R Π the world
   // angular momentum; empty: torque-free.
   std::function<Eigen::Vector3d(double, const Eigen::Matrix3d&, const Eigen::Vector3d&)> torque;
+  // A scene's body, whose body axes need not be principal: ω = I⁻¹ Π with
+  // this body-frame inverse (then `inertia` is not read); empty: principal axes.
+  std::optional<Eigen::Matrix3d> inverse_inertia = std::nullopt;
 };
 
 template <RotationGroup G>
@@ -126,7 +133,7 @@ struct Rates {
 // when a torque reads it.
 template <RotationGroup G, class RotationAt>
 Rates rates(const FreeBody& body, double t, const Eigen::Vector3d& pi, RotationAt&& rotation_at) {
-  Rates r{pi.cwiseQuotient(body.inertia), {}};
+  Rates r{body.inverse_inertia ? Eigen::Vector3d(*body.inverse_inertia * pi) : pi.cwiseQuotient(body.inertia), {}};
   r.momentum = pi.cross(r.omega);
   if (body.torque) {
     const Eigen::Matrix3d m = G::matrix(rotation_at());
@@ -387,6 +394,91 @@ State<G> rkmk45(const FreeBody& body, double t0, double t1, State<G> y, double h
     }
   }
   return y;
+}
+
+// ---- a scene's body: the rotation group times the translations ----------------------
+
+// The centre x and the linear momentum P: ẋ = P/m, Ṗ = F(t, P). The scene's
+// forces read neither the rotation nor L, and its torques neither x nor P
+// (core/model/model.hpp BodyEffects), so a step of the body on SO(3) × R⁹ is
+// the rotation's step above and, on (x, P), the classical RK of the same
+// coefficients (RKMK and Crouch–Grossman are that RK on a vector space):
+// the same stages, taken apart.
+struct Translation {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero(), momentum = Eigen::Vector3d::Zero();
+};
+template <RotationGroup G>
+struct BodyState {
+  State<G> rotation;
+  Translation translation;
+};
+
+namespace detail {
+// One RK step of `tab` on (x, P); with `embedded`, the embedded solution too.
+template <int S, class Force>
+Translation translate(const Tableau<S>& tab, double inv_mass, Force& force, double t, const Translation& y, double h,
+                      Translation* embedded) {
+  std::array<Eigen::Vector3d, S> kx, kp;
+  for (int i = 0; i < S; ++i) {
+    Eigen::Vector3d p = y.momentum;
+    for (int j = 0; j < i; ++j) p += (h * tab.a[i][j]) * kp[j];
+    kx[i] = inv_mass * p;
+    kp[i] = force(t + tab.c[i] * h, p);
+  }
+  Translation out = y, err;
+  for (int i = 0; i < S; ++i) {
+    out.x += (h * tab.b[i]) * kx[i];
+    out.momentum += (h * tab.b[i]) * kp[i];
+    err.x += (h * tab.e[i]) * kx[i];
+    err.momentum += (h * tab.e[i]) * kp[i];
+  }
+  if (embedded) *embedded = {out.x - err.x, out.momentum - err.momentum};
+  return out;
+}
+}  // namespace detail
+
+// The stages a scene's body step evaluates its forces at: 4 (RKMK on the
+// classical RK4), 7 (RKMK on Dormand–Prince 5(4), not first-same-as-last: the
+// stages are re-evaluated at the new rotation) and 5 (Crouch–Grossman 4).
+inline int body_step_stages(GroupMethod m) {
+  switch (m) {
+    case GroupMethod::rkmk4: return 4;
+    case GroupMethod::rkmk5: return 7;
+    case GroupMethod::crouch_grossman4: return 5;
+    default: return 0;
+  }
+}
+
+// One step of h of a scene's body by rkmk4, rkmk5 or crouch_grossman4;
+// force(t, P) is the world force. With `embedded` (rkmk5 only), the pair's
+// 4th-order solution as well: the difference of the two is the step's error
+// estimate, which the caller measures in its own stored numbers.
+template <RotationGroup G, class Force>
+BodyState<G> body_step(GroupMethod m, const FreeBody& body, double inv_mass, Force&& force, double t,
+                       const BodyState<G>& y, double h, BodyState<G>* embedded = nullptr) {
+  BodyState<G> out;
+  switch (m) {
+    case GroupMethod::rkmk4:
+      out.rotation = detail::advanced(y.rotation, detail::rkmk(detail::kRk4, body, t, y.rotation, h));
+      out.translation = detail::translate(detail::kRk4, inv_mass, force, t, y.translation, h, nullptr);
+      break;
+    case GroupMethod::rkmk5: {
+      detail::Increment err;
+      const detail::Increment d = detail::rkmk(detail::kDormandPrince, body, t, y.rotation, h, embedded ? &err : nullptr);
+      out.rotation = detail::advanced(y.rotation, d);
+      out.translation = detail::translate(detail::kDormandPrince, inv_mass, force, t, y.translation, h,
+                                          embedded ? &embedded->translation : nullptr);
+      if (embedded) embedded->rotation = detail::advanced(y.rotation, {d.theta - err.theta, d.momentum - err.momentum});
+      break;
+    }
+    case GroupMethod::crouch_grossman4:
+      out.rotation = detail::crouch_grossman(detail::kCrouchGrossman4, body, t, y.rotation, h);
+      out.translation = detail::translate(detail::kCrouchGrossman4, inv_mass, force, t, y.translation, h, nullptr);
+      break;
+    default:
+      throw std::invalid_argument("body_step takes rkmk4, rkmk5 and crouch_grossman4");
+  }
+  return out;
 }
 
 }  // namespace gacompare::core::lie

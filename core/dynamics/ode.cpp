@@ -1,5 +1,7 @@
 #include "core/dynamics/ode.hpp"
 
+#include "core/dynamics/lie_bodies.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,7 +10,8 @@
 namespace gacompare::core {
 
 bool is_adaptive(SolverMethod m) {
-  return m == SolverMethod::rk4_doubling || m == SolverMethod::cash_karp45 || butcher_tableau(m) != nullptr;
+  return m == SolverMethod::rk4_doubling || m == SolverMethod::cash_karp45 || m == SolverMethod::rkmk45 ||
+         butcher_tableau(m) != nullptr;
 }
 
 OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> velocity_of)
@@ -28,11 +31,18 @@ OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> vel
     case SolverMethod::vern8:
     case SolverMethod::vern9:
       tab_ = butcher_tableau(spec.method);
+      control_k_ = tab_->embedded_order + 1;
       fsal_ = tab_->fsal();
       for (int i = 0; i < tab_->stages; ++i) e_.push_back(tab_->b[i] - tab_->bhat[i]);
       K_.resize(static_cast<std::size_t>(tab_->stages) * n);
       weights_.resize(static_cast<std::size_t>(tab_->stages));
       ys_.resize(n);
+      break;
+    case SolverMethod::rkmk45:
+      control_k_ = 5;  // the embedded 4th-order solution's error goes as h^5
+      break;
+    case SolverMethod::rkmk4:
+    case SolverMethod::crouch_grossman4:
       break;
     case SolverMethod::symplectic_euler:
     case SolverMethod::velocity_verlet:
@@ -80,7 +90,7 @@ void OdeSolver::stop(const std::string& why, double t, double h, const std::vect
 // The embedded pairs' step control (ode.hpp): PI after an accepted step, I after
 // a rejected one. A clipped last step does not shrink the next interval's first try.
 void OdeSolver::control(double ratio, double h, bool clipped) {
-  const double k = tab_->embedded_order + 1;
+  const double k = control_k_;
   if (ratio <= 1.0) {
     // 0.9 E_n^(−0.7/k) E_{n−1}^(0.4/k) as one exp of logs (log E_{n−1} kept from
     // the step before): two transcendental calls a step instead of two pow's.
@@ -104,6 +114,16 @@ void OdeSolver::control(double ratio, double h, bool clipped) {
   }
 }
 
+// One Lie-group step into out_ (and err_), through the caller's group step.
+void OdeSolver::group_step(double t, double h, const std::vector<double>& y) {
+  if (!group_step_)
+    throw input_error("solver.method '" + std::string(to_string(spec_.method)) +
+                      "' steps rigid bodies on their rotation group, and this state has none to step");
+  std::fill(err_.begin(), err_.end(), 0.0);
+  group_step_(spec_.method, t, h, y, out_, err_);
+  stats_.derivative_evaluations += static_cast<std::uint64_t>(lie::body_step_stages(group_method(spec_.method)));
+}
+
 // y(t) on the last accepted step [t0_, t0_ + hlast_] from its interpolant.
 void OdeSolver::interpolate(double t, std::vector<double>& y) {
   const ButcherTableau& T = *tab_;
@@ -122,6 +142,26 @@ void OdeSolver::interpolate(double t, std::vector<double>& y) {
     for (std::size_t i = 1; i < s; ++i) acc += w[i] * (K_[i * n + m] - k1);
     y[m] = ys_[m] + hlast_ * acc;
   }
+}
+
+double OdeSolver::fixed_steps(double t, double t_end, const std::vector<double>& y) const {
+  const double steps = std::max(1.0, std::ceil((t_end - t) / spec_.dt * (1 - 1e-12)));
+  // Counted before they are taken: a count past 2^64 (dt 1e-300) would
+  // convert to nothing, and the body would silently never move.
+  if (static_cast<double>(stats_.steps_accepted) + steps > budget_) {
+    std::ostringstream why;
+    why << "the fixed step needs " << steps << " more steps to t=" << t_end << ", past the budget of " << budget_
+        << " (--max-steps raises it)";
+    stop(why.str(), t, spec_.dt, y);
+  }
+  return steps;
+}
+
+void OdeSolver::check_budget(double t) const {
+  if (static_cast<double>(stats_.steps_accepted + stats_.steps_rejected) < budget_) return;
+  std::ostringstream why;
+  why << "the budget of " << budget_ << " steps is spent (--max-steps raises it)";
+  stop(why.str(), t, h_, err_);
 }
 
 void OdeSolver::record(double h) {

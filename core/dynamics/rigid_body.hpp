@@ -55,6 +55,12 @@ concept RigidBodyDynamics = requires(const Scene& scene, const Model& compiled, 
   // each over abs + rel·|value| (the angle over abs + rel: a rotation has no
   // size of its own); the worst ratio, NaN when the step is not finite.
   { B::error_ratio(m, y, y, y, t, t) } -> std::same_as<double>;
+  // A Lie-group method's step (solver.method rkmk4, rkmk45,
+  // crouch_grossman4): each moving body through core::lie::body_step on the
+  // backend's own rotation (its RotationGroup), L = R Π read and written at
+  // the step's ends; out the state after h, err (rkmk45) the 5th-order state
+  // less the embedded 4th-order one, in the stored numbers, for error_ratio.
+  { B::group_step(m, SolverMethod{}, t, t, y, out, out) };
 };
 
 // What the collision stages read of a body at a state: its pose (centre of

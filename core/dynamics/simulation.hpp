@@ -8,6 +8,7 @@
 // they are used only when the scene lists the collisions effect.
 #include "core/collision/collision_step.hpp"
 #include "core/collision/collisions.hpp"
+#include "core/dynamics/lie_bodies.hpp"
 #include "core/dynamics/particle_system.hpp"
 #include "core/dynamics/rigid_body.hpp"
 
@@ -178,6 +179,17 @@ struct Simulation {
       ScopedStage timed(profile, Stage::forces);
       Bodies::derivative(m.bodies, t, y.subspan(m.offset), dydt.subspan(m.offset), asleep);
     }
+  }
+  // A Lie-group method's step (core/dynamics/ode.hpp set_group_step): a state
+  // of bodies only (lie_group_refusal keeps particles out), each body by its
+  // backend. Its forces are evaluated inside the step, timed as `integrate`.
+  static void group_step(const Model& m, SolverMethod method, double t, double h, std::span<const double> y,
+                         std::span<double> out, std::span<double> err) {
+    if (m.offset > 0)
+      throw input_error("solver.method '" + std::string(to_string(method)) +
+                        "' steps rigid bodies on their rotation group and cannot integrate particles");
+    m.force_evaluations += static_cast<std::uint64_t>(lie::body_step_stages(group_method(method)));
+    Bodies::group_step(m.bodies, method, t, h, y, out, err);
   }
   static bool after_step(const Model& m, std::vector<double>& y, Profile& profile) {
     const bool projected = Particles::after_step(m.particles, y, profile);

@@ -28,6 +28,8 @@ void check_implemented(const Scene& scene) {
   if (scene.find_effect<Collisions>() && scene.bodies.size() < 2)
     throw input_error(scene.file.string() + ": the collisions effect acts between rigid bodies (§2.4), and the scene has " +
                       std::to_string(scene.bodies.size()) + "; particles do not collide");
+  if (const std::string why = lie_group_refusal(scene); !why.empty())
+    throw input_error(scene.file.string() + ": " + why);
   if (scene.particles.empty() && scene.bodies.empty())
     throw input_error(scene.file.string() + ": the scene has nothing to simulate (no particles, no bodies)");
 }

@@ -49,6 +49,9 @@ concept Backend = requires(const Scene& scene, std::shared_ptr<const Model> comp
   { B::first_nonfinite(m, y) } -> std::same_as<std::string>;
   // The physical error norm of an adaptive step (core/model/scene.hpp ErrorNorm).
   { B::error_ratio(m, scene.solver, y, y, y) } -> std::same_as<double>;
+  // A Lie-group method's step of h from (t, y) into out (and the embedded
+  // pair's difference into err): core/dynamics/ode.hpp set_group_step.
+  { B::group_step(m, scene.solver.method, t, t, y, out, out) };
   // B::advance(model, data, solver, f, t, t_end, y, profile, after): integrates to
   // t_end (with collision handling when the model has it; core/dynamics/simulation.hpp).
 };
@@ -89,6 +92,11 @@ OdeSolver solver_for(const Scene& scene, const typename B::Model& model, std::si
     return B::error_ratio(model, scene.solver, y0, y1, err);
   });
   solver.set_step_budget(scene.limits.max_steps);
+  if (is_lie_group(scene.solver.method))
+    solver.set_group_step([&model](SolverMethod method, double t, double h, std::span<const double> y,
+                                   std::span<double> out, std::span<double> err) {
+      B::group_step(model, method, t, h, y, out, err);
+    });
   // Component i's owner, by the backend's own naming of a non-finite state
   // (only asked once a run has failed).
   solver.set_describe([&model, n](std::size_t i) {

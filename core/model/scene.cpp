@@ -58,8 +58,32 @@ std::string_view to_string(SolverMethod m) {
       return "symplectic_euler";
     case SolverMethod::velocity_verlet:
       return "velocity_verlet";
+    case SolverMethod::rkmk4:
+      return "rkmk4";
+    case SolverMethod::rkmk45:
+      return "rkmk45";
+    case SolverMethod::crouch_grossman4:
+      return "crouch_grossman4";
   }
   return "unknown";
+}
+
+bool is_lie_group(SolverMethod m) {
+  return m == SolverMethod::rkmk4 || m == SolverMethod::rkmk45 || m == SolverMethod::crouch_grossman4;
+}
+
+std::string lie_group_refusal(const Scene& s) {
+  if (!is_lie_group(s.solver.method)) return "";
+  const std::string method = "solver.method '" + std::string(to_string(s.solver.method)) + "'";
+  if (!s.particles.empty() || !s.generators.empty())
+    return method + " steps rigid bodies' rotations on their group and cannot integrate particles; the scene has "
+                    "particles (use a method of the flat state, such as rk4 or dopri5)";
+  if (s.bodies.empty()) return method + " steps rigid bodies' rotations on their group; the scene has no bodies";
+  if (s.find_effect<Collisions>())
+    return method + " cannot take the collisions effect: the collision stages re-integrate islands and time-of-impact "
+                    "trials on their own through the flat derivative (core/collision/subsystem.hpp), which a Lie-group "
+                    "method does not step";
+  return "";
 }
 
 std::string_view constraint_name(const Constraint& c) {
@@ -72,7 +96,8 @@ std::optional<SolverMethod> solver_method_from_string(std::string_view s) {
   for (auto m : {SolverMethod::euler, SolverMethod::rk4, SolverMethod::rk4_doubling, SolverMethod::cash_karp45,
                  SolverMethod::bs3, SolverMethod::dopri5, SolverMethod::tsit5, SolverMethod::vern6, SolverMethod::vern7,
                  SolverMethod::vern8, SolverMethod::vern9, SolverMethod::symplectic_euler,
-                 SolverMethod::velocity_verlet})
+                 SolverMethod::velocity_verlet, SolverMethod::rkmk4, SolverMethod::rkmk45,
+                 SolverMethod::crouch_grossman4})
     if (to_string(m) == s) return m;
   return std::nullopt;
 }
@@ -369,9 +394,10 @@ constexpr std::array<std::string_view, 6> kConstraintTypes = {"distance_to_point
                                                                "on_line",           "on_circle", "on_helix"};
 constexpr std::array<std::string_view, 3> kDrift = {"off", "baumgarte", "projection"};
 constexpr std::array<std::string_view, 2> kGeneratorTypes = {"particle_net", "particle_chain"};
-constexpr std::array<std::string_view, 13> kMethods = {
+constexpr std::array<std::string_view, 16> kMethods = {
     "euler", "rk4",   "rk4_doubling", "cash_karp45", "bs3",   "dopri5",           "tsit5",
-    "vern6", "vern7", "vern8",        "vern9",       "symplectic_euler", "velocity_verlet"};
+    "vern6", "vern7", "vern8",        "vern9",       "symplectic_euler", "velocity_verlet",
+    "rkmk4", "rkmk45", "crouch_grossman4"};
 constexpr std::array<std::string_view, 9> kShapes = {"box",  "tetrahedron", "pyramid", "octahedron", "icosahedron",
                                                      "hull", "mesh",        "sphere",  "capsule"};
 
@@ -420,6 +446,7 @@ class Loader {
     each(o.opt("generators"), [&](const Val& v) { s.generators.push_back(generator(v)); });
     each(o.opt("effects"), [&](const Val& v) { s.effects.push_back(effect(v)); });  // after the bodies they name
     each(o.opt("constraints"), [&](const Val& v) { s.constraints.push_back(constraint(v, s)); });
+    if (const std::string why = lie_group_refusal(s); !why.empty()) fail_at(ctx_, "/solver/method", why);
     // Before any work: the samples the run would record. What needs the
     // bodies' meshes (convexity, sizes, steps) is refused once the model is
     // compiled (core/model/model.hpp load_compiled).

@@ -21,11 +21,14 @@ using Vec3 = Eigen::Vector3d;
 enum class SolverMethod {
   euler, rk4, rk4_doubling, cash_karp45,
   bs3, dopri5, tsit5, vern6, vern7, vern8, vern9,  // embedded pairs (core/dynamics/tableaus.hpp)
-  symplectic_euler, velocity_verlet
+  symplectic_euler, velocity_verlet,
+  rkmk4, rkmk45, crouch_grossman4  // Lie-group methods on the bodies' rotations (core/dynamics/lie_group.hpp)
 };
 std::string_view to_string(SolverMethod m);
 std::optional<SolverMethod> solver_method_from_string(std::string_view s);
 std::span<const std::string_view> solver_method_names();  // every method's name, in the order above
+// rkmk4, rkmk45, crouch_grossman4: each body's rotation steps on its group.
+bool is_lie_group(SolverMethod m);
 
 // How an adaptive step's error is measured against the tolerances:
 //   physical (default): per body, the errors of the position, the velocity, the
@@ -297,6 +300,10 @@ struct Scene {
 Scene load_scene(const std::filesystem::path& file, const Limits& limits = {});
 // Same, from text already in memory; `file` is used in messages and to resolve meshes.
 Scene parse_scene(const std::string& text, const std::filesystem::path& file, const Limits& limits = {});
+// Why the scene cannot take its Lie-group solver.method (particles, no bodies,
+// collisions), "" when it can or its method is not one: the loader refuses at
+// /solver/method, and simulate() refuses a scene built in code.
+std::string lie_group_refusal(const Scene& scene);
 // Throws the loader's refusal "FILE: JSON/PATH: what" (for checks made after loading).
 [[noreturn]] void refuse_at(const std::filesystem::path& file, const std::string& path, const std::string& what);
 

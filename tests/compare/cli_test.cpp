@@ -464,7 +464,8 @@ TEST(Cli, SweepNamesTheSolversItKnows) {
                              fresh_dir("sweep_unknown").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--solvers: unknown solver 'rk5' (one of euler, rk4, rk4_doubling, cash_karp45, bs3, dopri5, "
-                       "tsit5, vern6, vern7, vern8, vern9, symplectic_euler, velocity_verlet)"),
+                       "tsit5, vern6, vern7, vern8, vern9, symplectic_euler, velocity_verlet, rkmk4, rkmk45, "
+                       "crouch_grossman4)"),
             std::string::npos)
       << r.err;
 }

@@ -2,16 +2,20 @@
 // rigid-body cases.
 #include "pga/backend.hpp"
 
+#include "pga/rotation_group.hpp"
+#include "../lie_bodies_cases.hpp"
 #include "../rigid_cases.hpp"
 
 namespace gacompare::testing {
 
 struct Motor {
   using Backend = pga::Backend;
+  using Group = pga::MotorGroup;  // the Lie-group methods' step (tests/lie_bodies_cases.hpp)
   static constexpr const char* options = "{}";
   static constexpr bool screw = true;  // interpolated_pose is the motor's screw
 };
 INSTANTIATE_TYPED_TEST_SUITE_P(Pga, RigidCases, Motor);
+INSTANTIATE_TYPED_TEST_SUITE_P(Pga, LieBodiesCases, Motor);
 
 // The time of impact's motion in pga is the screw M0 (M̃0 M1)^s: a body that
 // turns by θ about an axis perpendicular to its displacement d moves its

@@ -1,19 +1,24 @@
 // traditional/rigid_body.hpp, with the rotation as a matrix (eq. 34) and as a
 // quaternion, against the analytic rigid-body cases.
 #include "traditional/backend.hpp"
+#include "traditional/rotation_group.hpp"
+#include "../lie_bodies_cases.hpp"
 #include "../rigid_cases.hpp"
 
 namespace gacompare::testing {
 struct Matrix {
   using Backend = traditional::Backend;
+  using Group = traditional::MatrixGroup;  // the Lie-group methods' step (tests/lie_bodies_cases.hpp)
   static constexpr const char* options = R"({"rotation": "matrix"})";
 };
 struct Quaternion {
   using Backend = traditional::Backend;
+  using Group = traditional::QuaternionGroup;
   static constexpr const char* options = R"({"rotation": "quaternion"})";
 };
 using Variants = ::testing::Types<Matrix, Quaternion>;
 INSTANTIATE_TYPED_TEST_SUITE_P(Traditional, RigidCases, Variants);
+INSTANTIATE_TYPED_TEST_SUITE_P(Traditional, LieBodiesCases, Variants);
 }  // namespace gacompare::testing
 
 #include "core/model/model.hpp"

@@ -56,11 +56,12 @@ TEST(Sha256, KnownDigests) {
 TEST(SceneNames, SolverMethodsRoundTrip) {
   for (auto m : {SolverMethod::euler, SolverMethod::rk4, SolverMethod::rk4_doubling, SolverMethod::cash_karp45,
                  SolverMethod::bs3, SolverMethod::dopri5, SolverMethod::tsit5, SolverMethod::vern6, SolverMethod::vern7,
-                 SolverMethod::vern8, SolverMethod::vern9, SolverMethod::symplectic_euler, SolverMethod::velocity_verlet})
+                 SolverMethod::vern8, SolverMethod::vern9, SolverMethod::symplectic_euler, SolverMethod::velocity_verlet,
+                 SolverMethod::rkmk4, SolverMethod::rkmk45, SolverMethod::crouch_grossman4})
     EXPECT_EQ(solver_method_from_string(to_string(m)), m) << to_string(m);
   // The names the loader and the command line offer, one per method, in order.
   const auto names = solver_method_names();
-  ASSERT_EQ(names.size(), 13u);
+  ASSERT_EQ(names.size(), 16u);
   for (auto name : names) EXPECT_EQ(to_string(*solver_method_from_string(name)), name);
   EXPECT_EQ(to_string(SolverMethod::cash_karp45), "cash_karp45");
   EXPECT_FALSE(solver_method_from_string("RK4").has_value());
@@ -374,10 +375,33 @@ std::vector<BadCase> bad_cases() {
       {"MissingMethod",
        erase("/solver/method"),
        {": /solver/method: expected one of euler, rk4", "got nothing"}},
+      // The Lie-group methods step bodies only, and not through collisions.
+      {"LieGroupMethodWithParticles",
+       set("/solver/method", "rkmk4"),
+       {": /solver/method: solver.method 'rkmk4' steps rigid bodies' rotations on their group and cannot "
+        "integrate particles; the scene has particles"}},
+      {"LieGroupMethodWithCollisions",
+       [] {
+         json j = json::parse(kBase);
+         j["solver"]["method"] = "crouch_grossman4";
+         for (const char* key : {"particles", "constraints", "generators"}) j.erase(key);
+         return j.dump();
+       },
+       {": /solver/method: solver.method 'crouch_grossman4' cannot take the collisions effect"}},
+      {"LieGroupMethodWithoutBodies",
+       [] {
+         json j = json::parse(kBase);
+         j["solver"]["method"] = "rkmk45";
+         for (const char* key : {"particles", "constraints", "generators", "bodies"}) j.erase(key);
+         j["effects"].erase(1);
+         return j.dump();
+       },
+       {": /solver/method: solver.method 'rkmk45' steps rigid bodies' rotations on their group; the scene has no "
+        "bodies"}},
       {"UnknownMethod",
        set("/solver/method", "rk5"),
        {": /solver/method: expected one of euler, rk4, rk4_doubling, cash_karp45, bs3, dopri5, tsit5, vern6, "
-        "vern7, vern8, vern9, symplectic_euler, velocity_verlet, got \"rk5\""}},
+        "vern7, vern8, vern9, symplectic_euler, velocity_verlet, rkmk4, rkmk45, crouch_grossman4, got \"rk5\""}},
       {"NegativeDt", set("/solver/dt", -1), {": /solver/dt: expected a number > 0, got -1"}},
       {"NegativeRelTol",
        set("/solver/rel_tol", -1e-9),
