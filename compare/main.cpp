@@ -98,8 +98,10 @@ std::vector<compare::Figure> rigid_work_precision(const std::vector<compare::Sce
   compare::SweepSpec spec;
   // Each family's representative at these tolerances: the report's Cash–Karp
   // (classical), Tsitouras 5(4) and Verner 8(7) (PI pairs; fastest at loose
-  // and tight tolerances on the rigid scenes, docs/results/integrators.md).
-  spec.solvers = {core::SolverMethod::cash_karp45, core::SolverMethod::tsit5, core::SolverMethod::vern8};
+  // and tight tolerances on the rigid scenes, docs/results/integrators.md),
+  // and RKMK 4(5) (Lie group: the adaptive one, on the rotation's group).
+  spec.solvers = {core::SolverMethod::cash_karp45, core::SolverMethod::tsit5, core::SolverMethod::vern8,
+                  core::SolverMethod::rkmk45};
   spec.tol_from = 4, spec.tol_to = 10, spec.repeats = 3, spec.peer = false, spec.by_family = true;
   for (const auto& r : results) {
     if (compare::category_of(r.scene) != compare::Category::rigid_bodies) continue;
@@ -112,7 +114,7 @@ std::vector<compare::Figure> rigid_work_precision(const std::vector<compare::Sce
       const fs::path svg = folder / (name + "_work_precision.svg");
       figures.push_back({fs::exists(svg) ? core::read_file(svg, "work-precision diagram") : "",
                          compare::md_text(r.scene.name) + ": each backend's best method of each family (classical: "
-                         "Cash–Karp 4(5); PI pairs: Tsitouras 5(4), Verner 8(7)) at tolerances 1e-4 to 1e-10, the "
+                         "Cash–Karp 4(5); PI pairs: Tsitouras 5(4), Verner 8(7); Lie group: RKMK 4(5)) at tolerances 1e-4 to 1e-10, the "
                          "traditional backend as matrix and as quaternion; error against a 1e-13 reference, time the "
                          "median of 3 runs. Table, every method: [" + compare::md_text(r.scene.name) +
                              "/work_precision/sweep.md](" + name + "/work_precision/sweep.md)."});

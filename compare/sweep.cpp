@@ -423,6 +423,8 @@ std::string_view method_family(std::string_view solver) {
       return "classical";
     case SolverMethod::symplectic_euler: case SolverMethod::velocity_verlet:
       return "symplectic";
+    case SolverMethod::rkmk4: case SolverMethod::rkmk45: case SolverMethod::crouch_grossman4:
+      return "Lie group";
     default:
       return "PI pairs";
   }

@@ -58,7 +58,8 @@ struct SweepSpec {
 // A method's family, as the diagrams group them: "classical" (Euler, RK4,
 // RK4 with step doubling, Cash–Karp, with an I step controller), "PI pairs"
 // (Bogacki–Shampine, Dormand–Prince, Tsitouras, Verner, with a PI
-// controller), "symplectic", or "Odeint" for the Boost peers.
+// controller), "symplectic", "Lie group" (RKMK 4 and 4(5), Crouch–Grossman 4:
+// the rotation stepped on its group), or "Odeint" for the Boost peers.
 std::string_view method_family(std::string_view solver);
 
 // One number through a printf format ("%.3g"), as the reports write them.

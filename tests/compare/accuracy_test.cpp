@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -112,6 +114,33 @@ TEST(EqualAccuracy, SpinningTopReachesTheTargetAndReusesTheCache) {
   const std::string md = accuracy_section_md(plan, timed);
   EXPECT_NE(md.find("settings differ per backend"), std::string::npos) << md;
   EXPECT_NE(md.find("| cga |"), std::string::npos) << md;
+  std::filesystem::remove_all(dir);
+}
+
+// The Lie-group methods are searched like the others: rkmk45 over its
+// tolerances, rkmk4 and crouch_grossman4 over halved steps, in every backend,
+// and each setting found reaches the target.
+TEST(EqualAccuracy, LieGroupMethodsReachTheTarget) {
+  const auto dir = std::filesystem::temp_directory_path() / ("gacompare-accuracy-lie-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  for (const auto method : {core::SolverMethod::rkmk45, core::SolverMethod::rkmk4, core::SolverMethod::crouch_grossman4}) {
+    core::Scene scene = core::load_scene(std::string(GACOMPARE_DATA_DIR) + "/scenes/spinning_top.json");
+    scene.duration = 0.5;
+    scene.solver.method = method;
+    const double target = 1e-9;  // rad: past the first rung of both ladders (1e-3, the scene's dt), so searched
+    std::string file(core::to_string(method));
+    file += ".json";
+    const AccuracyPlan plan = find_equal_accuracy(scene, target, {"traditional", "cga", "pga"}, dir / file);
+    EXPECT_EQ(plan.adaptive, method == core::SolverMethod::rkmk45);
+    ASSERT_EQ(plan.backends.size(), 3u);
+    for (const auto& s : plan.backends) {
+      EXPECT_EQ(s.spec.method, method) << s.backend;
+      EXPECT_LE(s.error, target) << core::to_string(method) << " " << s.backend;
+      EXPECT_GT(s.steps, 0u) << s.backend;
+      std::printf("%s %s: dt %.3g, tol %.3g, error %.2e in %llu steps\n", core::to_string(method).data(),
+                  s.backend.c_str(), s.spec.dt, s.spec.abs_tol, s.error, static_cast<unsigned long long>(s.steps));
+    }
+  }
   std::filesystem::remove_all(dir);
 }
 

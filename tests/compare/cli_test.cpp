@@ -126,10 +126,12 @@ TEST(Cli, TheOverviewDrawsTheRigidScenesWorkPrecision) {
     EXPECT_NE(sweep.find(b), std::string::npos) << b;
   // Every method is in the table; the diagram draws each backend's best of
   // each family, and its key names the families, not the methods.
-  for (const char* m : {"| cash_karp45 |", "| tsit5 |", "| vern8 |"}) EXPECT_NE(sweep.find(m), std::string::npos) << m;
+  for (const char* m : {"| cash_karp45 |", "| tsit5 |", "| vern8 |", "| rkmk45 |"})
+    EXPECT_NE(sweep.find(m), std::string::npos) << m;
   const std::string svg = read_text(out / "tumbling_box" / "work_precision" / "tumbling_box_work_precision.svg");
   EXPECT_NE(svg.find("classical"), std::string::npos);
   EXPECT_NE(svg.find("PI pairs"), std::string::npos);
+  EXPECT_NE(svg.find("Lie group"), std::string::npos);
   EXPECT_EQ(svg.find("vern8"), std::string::npos);
   r = gacompare("compare " + scenes + " --repeat 1 --quiet --no-work-precision --out " + bare.string());
   ASSERT_EQ(r.code, 0) << r.err;
@@ -552,6 +554,48 @@ TEST(Cli, SweepOfABodyMeasuresEveryErrorAndDrawsOrientation) {
             std::string::npos);
 
   EXPECT_EQ(gacompare("sweep " + kScene + " --error orientation --out " + fresh_dir("bad_error").string()).code, 2);
+}
+
+// The Lie-group methods sweep like the others: the fixed-step ones over the
+// steps, rkmk45 over the tolerances, in every representation (matrix,
+// quaternion, rotor, motor), every cell with an error and no failure; the
+// diagram's key names their family. A particle scene's cells carry the
+// loader's refusal instead.
+TEST(Cli, SweepOffersTheLieGroupMethods) {
+  const fs::path dir = fresh_dir("sweep_lie");
+  const Result r = gacompare("sweep " + std::string(GACOMPARE_DATA_DIR) +
+                             "/scenes/dzhanibekov.json --solvers rkmk4,crouch_grossman4,rkmk45 --steps 1e-2:1 "
+                             "--tolerances 1e-5:1e-6 --no-peer --max-duration 2 --repeat 1 --quiet --out " +
+                             dir.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream csv(read_text(dir / "sweep.csv"));
+  std::string header, row;
+  std::getline(csv, header);
+  const auto names = csv_fields(header);
+  int rows = 0;
+  while (std::getline(csv, row)) {
+    const auto f = csv_fields(row);
+    ASSERT_EQ(f.size(), names.size()) << row;
+    const double e = std::stod(f[std::find(names.begin(), names.end(), "orientation_error") - names.begin()]);
+    EXPECT_GT(e, 0.0) << row;
+    EXPECT_LT(e, 1e-3) << row;  // a 4th-order step of 0.005 s over 2 s is far below this
+    ++rows;
+  }
+  EXPECT_EQ(rows, 24);  // three methods at two settings, in four representations
+  const std::string md = read_text(dir / "sweep.md");
+  for (const char* cell : {"| rkmk4 | traditional | dt 0.01 |", "| crouch_grossman4 | pga | dt 0.005 |",
+                           "| rkmk45 | traditional-quaternion | tol 1e-05 |", "| rkmk45 | cga | tol 1e-06 |"})
+    EXPECT_NE(md.find(cell), std::string::npos) << cell << "\n" << md;
+  const std::string svg = read_text(dir / "dzhanibekov_work_precision.svg");
+  EXPECT_NE(svg.find("rkmk45"), std::string::npos);
+
+  const fs::path particles = fresh_dir("sweep_lie_particles");
+  ASSERT_EQ(gacompare("sweep " + kScene + " --solvers rkmk4 --steps 1e-2:0 --no-peer --repeat 1 --quiet --out " +
+                      particles.string())
+                .code,
+            0);
+  EXPECT_NE(read_text(particles / "sweep.md").find("cannot integrate particles"), std::string::npos)
+      << read_text(particles / "sweep.md");
 }
 
 // A cell is keyed by everything that changes it (compare/sweep.hpp, cell_key):

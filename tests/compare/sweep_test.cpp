@@ -43,5 +43,13 @@ TEST(Sweep, CostAtErrorReadsTheLowerEnvelope) {
   EXPECT_NEAR(at->time, law(1e-4).time, 1e-12 * law(1e-4).time);
 }
 
+// The diagrams' families: the Lie-group methods are one of their own.
+TEST(Sweep, LieGroupMethodsAreTheirOwnFamily) {
+  for (const char* m : {"rkmk4", "rkmk45", "crouch_grossman4"}) EXPECT_EQ(method_family(m), "Lie group") << m;
+  EXPECT_EQ(method_family("cash_karp45"), "classical");
+  EXPECT_EQ(method_family("dopri5"), "PI pairs");
+  EXPECT_EQ(method_family("odeint_dopri5"), "Odeint");
+}
+
 }  // namespace
 }  // namespace gacompare::compare
