@@ -2,12 +2,15 @@
 // harmonic oscillator. Convergence orders are checked by halving the step, the
 // adaptive methods by the global error their tolerance promises.
 #include "core/dynamics/ode.hpp"
+#include "core/error.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <string>
+#include <utility>
 
 namespace gacompare::core {
 namespace {
@@ -23,6 +26,59 @@ double decay_error(SolverMethod m, double dt) {
   s.advance([](double, std::span<const double> yy, std::span<double> dy) { dy[0] = -yy[0]; }, t, 1.0, y, p);
   EXPECT_EQ(t, 1.0);
   return std::abs(y[0] - std::exp(-1.0));
+}
+
+// The Lie-group methods take their step from the caller (set_group_step: a
+// backend's bodies) and refuse to run without one. With one, the fixed-step
+// methods split an interval into equal steps no longer than dt and count
+// their stages (4 and 5) as evaluations; rkmk45 steps by the error the step
+// hands back (here a stand-in, h⁵ for each component: the controller then
+// settles near h = tol^(1/5)), lands on t_end and counts 7 a try. The stand-in
+// step is exact (y e^(−h)), so the state is e^(−1) to rounding (1e-15).
+TEST(Ode, LieGroupMethodsStepThroughTheCallersGroupStep) {
+  Profile p;
+  const auto f = [](double, std::span<const double>, std::span<double>) {};
+  {
+    OdeSolver s(spec(SolverMethod::rkmk4, 0.1), 1);
+    std::vector<double> y{1.0};
+    double t = 0;
+    try {
+      s.advance(f, t, 1.0, y, p);
+      ADD_FAILURE() << "no group step, and no refusal";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("solver.method 'rkmk4' steps rigid bodies on their rotation group"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  for (const auto& [method, stages] : {std::pair{SolverMethod::rkmk4, 4u}, {SolverMethod::crouch_grossman4, 5u}}) {
+    OdeSolver s(spec(method, 0.03), 1);
+    s.set_group_step([](SolverMethod, double, double h, std::span<const double> y, std::span<double> out,
+                        std::span<double>) { out[0] = y[0] * std::exp(-h); });
+    std::vector<double> y{1.0};
+    double t = 0;
+    s.advance(f, t, 1.0, y, p);
+    EXPECT_EQ(t, 1.0);
+    EXPECT_EQ(s.stats().steps_accepted, 34u);  // ceil(1 / 0.03)
+    EXPECT_EQ(s.stats().derivative_evaluations, 34u * stages);
+    EXPECT_NEAR(y[0], std::exp(-1.0), 1e-15);
+  }
+  OdeSolver s(spec(SolverMethod::rkmk45, 1e-3, 1e-8), 1);
+  s.set_group_step([](SolverMethod m, double, double h, std::span<const double> y, std::span<double> out,
+                      std::span<double> err) {
+    EXPECT_EQ(m, SolverMethod::rkmk45);
+    out[0] = y[0] * std::exp(-h);
+    err[0] = std::pow(h, 5);
+  });
+  std::vector<double> y{1.0};
+  double t = 0;
+  s.advance(f, t, 1.0, y, p);
+  EXPECT_EQ(t, 1.0);
+  EXPECT_NEAR(y[0], std::exp(-1.0), 1e-15);
+  const SolverStats& st = s.stats();
+  EXPECT_GT(st.steps_accepted, 10u);
+  EXPECT_LT(st.max_step, 0.05);  // (1e-8 · (1 + e^(−t)))^(1/5) ≈ 0.03, the PI controller's 0.9 below it
+  EXPECT_EQ(st.derivative_evaluations, 7 * (st.steps_accepted + st.steps_rejected));
 }
 
 TEST(Ode, EulerIsFirstOrder) {
