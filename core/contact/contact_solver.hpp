@@ -453,6 +453,8 @@ class ContactSolver {
           const double bound = limit_of(u);
           if (round > 0 && std::abs(x[u.at]) >= g.hi[u.at] * (1 - 1e-9))
             moved = std::max(moved, std::abs(bound - g.hi[u.at]) * g.A.coeff(u.at, u.at));
+          // A row inside its old bound that the new one cuts off moved too.
+          if (round > 0) moved = std::max(moved, (std::abs(x[u.at]) - bound) * g.A.coeff(u.at, u.at));
           g.lo[u.at] = -bound, g.hi[u.at] = bound;
         }
         if (round > 0 && moved <= how.velocity_tolerance) break;
