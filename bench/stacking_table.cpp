@@ -8,10 +8,12 @@
 // progress on stderr.
 //
 //   build/ci/bench/stacking_table [--filter TEXT] [--columns traditional,cga,pga,bullet,traditional-pgs,cga-pgs,pga-pgs]
-//                                 [--duration SECONDS] [--counters NAME,NAME,...]
+//                                 [--duration SECONDS] [--restitution E] [--counters NAME,NAME,...]
 //
 // --duration shortens every case's run (the verdict still holds each sample
-// to the answer); --counters prints those counters of every run on stderr,
+// to the answer); --restitution replaces every case's coefficient of
+// restitution (0.2), to tell what the bounces of the landings do from what the
+// solver does; --counters prints those counters of every run on stderr,
 // for looking into a failing case.
 //
 // Default columns: traditional, cga, pga, bullet. A column is a backend with the
@@ -27,6 +29,7 @@
 #include <cstdlib>
 #include <map>
 #include <string>
+#include <variant>
 #include <vector>
 
 using namespace gacompare;
@@ -45,7 +48,7 @@ core::ContactSolverMethod method_of(const std::string& column) {
 int usage() {
   std::fprintf(stderr,
                "usage: stacking_table [--filter TEXT] [--columns traditional,cga,pga,bullet,traditional-pgs,cga-pgs,pga-pgs] "
-               "[--duration SECONDS] [--counters NAME,NAME,...]\n");
+               "[--duration SECONDS] [--restitution E] [--counters NAME,NAME,...]\n");
   return 2;
 }
 
@@ -54,6 +57,7 @@ int usage() {
 int main(int argc, char** argv) {
   std::string filter, command = "stacking_table";
   double duration = 0;  // 0: each case's own
+  double restitution = -1;  // < 0: each case's own
   std::vector<std::string> shown;  // counters printed per run
   std::vector<std::string> columns{"traditional", "cga", "pga", "bullet"};
   for (int i = 1; i < argc; ++i) {
@@ -67,6 +71,10 @@ int main(int argc, char** argv) {
       char* end = nullptr;
       duration = std::strtod(value.c_str(), &end);
       if (*end != '\0' || !(duration > 0)) return usage();
+    } else if (arg == "--restitution") {
+      char* end = nullptr;
+      restitution = std::strtod(value.c_str(), &end);
+      if (*end != '\0' || !(restitution >= 0 && restitution <= 1)) return usage();
     } else if (arg == "--counters") {
       shown = bench::comma_list(value);
     } else if (arg == "--columns") {
@@ -82,6 +90,11 @@ int main(int argc, char** argv) {
   if (duration > 0)
     for (auto* family : {&direct, &pgs})
       for (auto& c : *family) c.scene.duration = duration;
+  if (restitution >= 0)
+    for (auto* family : {&direct, &pgs})
+      for (auto& c : *family)
+        for (auto& effect : c.scene.effects)
+          if (auto* collisions = std::get_if<core::Collisions>(&effect)) collisions->restitution = restitution;
 
   std::printf("Command: `build/ci/bench/%s`\n\n", command.c_str());
   std::printf("Each cell: pass or FAIL, the worst error over its bound (≤ 1 passes), and the run's wall time per "
