@@ -116,7 +116,7 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
       }
     }
     for (const auto& push : fx.pushes)
-      if (push.body == b && t >= push.from && t < push.until) {
+      if (push.acts_on(b, t)) {
         const Vector3 f = vector3(push.force);
         force += f;
         torque += sandwich(unit(), vector3(push.point)) ^ f;  // τ = (R p R̃) ∧ F

@@ -105,7 +105,7 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
       if (fx.has_quadratic_drag) wrench -= line(fx.quadratic_k * v.norm() * v, fx.quadratic_k_angular * w.norm() * w);
     }
     for (const auto& push : fx.pushes)
-      if (push.body == b && t >= push.from && t < push.until)
+      if (push.acts_on(b, t))
         wrench += join(point(r * push.point), direction(push.force));  // F = X ∨ D
     // Ṁ = −½ V_w M = −½ M V_b (V_w M = T V T̃ T R = T V R = M R̃ V R): the body
     // frame's rate needs no translation read back from M, and the product

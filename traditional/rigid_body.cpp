@@ -33,6 +33,9 @@ void put(std::span<double> y, std::size_t i, const Mat& r) {
 Eigen::Quaterniond quat_at(std::span<const double> y, std::size_t i) {
   return Eigen::Quaterniond(y[i], y[i + 1], y[i + 2], y[i + 3]);
 }
+void put(std::span<double> y, std::size_t i, const Eigen::Quaterniond& q) {
+  y[i] = q.w(), y[i + 1] = q.x(), y[i + 2] = q.y(), y[i + 3] = q.z();
+}
 Mat skew(const Vec& w) {  // w* of eq. 32: w* v = w × v
   Mat s;
   s << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
@@ -147,7 +150,7 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     if (fx.has_linear_drag) force -= fx.linear_k * v, torque -= fx.linear_k_angular * w;
     if (fx.has_quadratic_drag) force -= fx.quadratic_k * v.norm() * v, torque -= fx.quadratic_k_angular * w.norm() * w;
     for (const auto& push : fx.pushes)
-      if (push.body == b && t >= push.from && t < push.until) {
+      if (push.acts_on(b, t)) {
         force += push.force;
         torque += (r * push.point).cross(push.force);  // τ = (R p) × F
       }
@@ -259,8 +262,7 @@ void group_step_in(const RigidBodies::Model& m, core::SolverMethod method, doubl
     const auto& r = state.rotation.rotation;
     put(s, at.x, state.translation.x);
     put(s, at.p, state.translation.momentum);
-    if constexpr (std::is_same_v<G, MatrixGroup>) put(s, at.rot, r);
-    else s[at.rot] = r.w(), s[at.rot + 1] = r.x(), s[at.rot + 2] = r.y(), s[at.rot + 3] = r.z();
+    put(s, at.rot, r);
     put(s, at.l, Vec(G::matrix(r) * state.rotation.momentum));
   };
   core::group_step_bodies<G>(m.effects, m.bodies.size(), m.stride, method, t, h, y, out, err, body_of, read, write);
@@ -369,8 +371,7 @@ void RigidBodies::displace(const Model& m, std::span<double> y, std::size_t b, c
   if (m.rotation == core::Rotation::matrix) {
     put(y, at.rot, Mat(turn.toRotationMatrix() * matrix_at(y, at.rot)));
   } else {
-    const Eigen::Quaterniond q = Eigen::Quaterniond(turn) * quat_at(y, at.rot);
-    y[at.rot] = q.w(), y[at.rot + 1] = q.x(), y[at.rot + 2] = q.y(), y[at.rot + 3] = q.z();
+    put(y, at.rot, Eigen::Quaterniond(Eigen::Quaterniond(turn) * quat_at(y, at.rot)));
   }
 }
 

@@ -21,7 +21,7 @@ Eigen::Vector3d BodyForces::force(double t, const Eigen::Vector3d& momentum) con
   if (fx.has_linear_drag) f -= fx.linear_k * v;
   if (fx.has_quadratic_drag) f -= fx.quadratic_k * v.norm() * v;
   for (const auto& push : fx.pushes)
-    if (push.body == body && t >= push.from && t < push.until) f += push.force;
+    if (push.acts_on(body, t)) f += push.force;
   return f;
 }
 
@@ -34,7 +34,7 @@ Eigen::Vector3d BodyForces::torque(double t, const Eigen::Matrix3d& r, const Eig
     if (fx.has_quadratic_drag) tau -= fx.quadratic_k_angular * w.norm() * w;
   }
   for (const auto& push : fx.pushes)
-    if (push.body == body && t >= push.from && t < push.until) tau += (r * push.point).cross(push.force);
+    if (push.acts_on(body, t)) tau += (r * push.point).cross(push.force);
   return tau;
 }
 

@@ -53,6 +53,7 @@ struct BodyEffects {
     std::size_t body;                // scene index
     Eigen::Vector3d point, force;    // body frame from the centre of mass; world
     double from, until;              // active for from <= t < until
+    bool acts_on(std::size_t b, double t) const { return body == b && t >= from && t < until; }
   };
   std::vector<Push> pushes;
 };
