@@ -4,7 +4,9 @@
 // solver the family is built for and held to its statics answer at every
 // sample. Instantiated by tests/{traditional,cga,pga}/stacking_test.cpp under the
 // `stacking` label; the long cases (ten moving bodies or more: columns,
-// pyramids, dominoes) are left out by GACOMPARE_QUICK_TESTS=1, and the open ones
+// pyramids, dominoes) are left out by GACOMPARE_QUICK_TESTS=1, the slow ones
+// (minutes per backend: the largest pyramids) run only with
+// GACOMPARE_SLOW_TESTS=1, and the open ones
 // (StackCase::open) are skipped with their reason unless GACOMPARE_OPEN_CASES=1.
 #include "core/dynamics/simulator.hpp"
 #include "answers/stacking_family.hpp"
@@ -42,6 +44,8 @@ class StackingFamily : public ::testing::TestWithParam<std::size_t> {
   void check_case() {
     const core::StackCase& c = stacking_cases()[GetParam()];
     if (c.long_running && !long_tests()) GTEST_SKIP() << c.name << " is long: left out by GACOMPARE_QUICK_TESTS=1";
+    if (c.slow && !slow_tests())
+      GTEST_SKIP() << c.name << " takes minutes per backend: GACOMPARE_SLOW_TESTS=1 runs it (the stacking table always does)";
     if (!c.open.empty() && !open_cases())
       GTEST_SKIP() << c.name << " is open: " << c.open << " (GACOMPARE_OPEN_CASES=1 runs it)";
     const core::Run run = core::simulate<Backend>(c.scene);
