@@ -34,8 +34,8 @@ OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> vel
       control_k_ = tab_->embedded_order + 1;
       fsal_ = tab_->fsal();
       for (int i = 0; i < tab_->stages; ++i) e_.push_back(tab_->b[i] - tab_->bhat[i]);
-      K_.resize(static_cast<std::size_t>(tab_->stages) * n);
-      weights_.resize(static_cast<std::size_t>(tab_->stages));
+      K_.resize(static_cast<std::size_t>(std::max(tab_->stages, tab_->dense_stages)) * n);
+      weights_.resize(static_cast<std::size_t>(std::max(tab_->stages, tab_->dense_stages)));
       ys_.resize(n);
       break;
     case SolverMethod::rkmk45:
@@ -128,7 +128,7 @@ void OdeSolver::group_step(double t, double h, const std::vector<double>& y) {
 void OdeSolver::interpolate(double t, std::vector<double>& y) {
   const ButcherTableau& T = *tab_;
   const double theta = (t - t0_) / hlast_;
-  const auto deg = static_cast<std::size_t>(T.dense_degree), s = static_cast<std::size_t>(T.stages), n = y.size();
+  const auto deg = static_cast<std::size_t>(T.dense_degree), s = static_cast<std::size_t>(T.dense_stages), n = y.size();
   std::vector<double>& w = weights_;
   for (std::size_t i = 0; i < s; ++i) {
     double wi = 0;  // Horner in θ, then the factor θ of every b_i(θ)

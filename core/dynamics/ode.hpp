@@ -31,7 +31,9 @@
 // A rejected step uses the I law, h · max(0.2, 0.9 · E^(−1/k)), never the memory
 // (it belongs to an accepted step), and the step after a rejection may not grow.
 //
-// Dense output (bs3, dopri5, tsit5: interpolants that cost no extra stage): the
+// Dense output (bs3, dopri5, tsit5: interpolants that cost no extra stage;
+// vern6–vern9: Verner's interpolants of the pair's order, whose 3, 6, 8 or 10
+// extra stages are evaluated once in a step an output time falls in): the
 // solver steps past t_end and interpolates y(t_end), keeping its own state
 // ahead. The next advance() resumes from that state only when the caller hands
 // back exactly the (t, y) it was given; a caller that changed y (a collision's
@@ -138,6 +140,8 @@ class OdeSolver {
   template <class F> void split_step(F& f, double t, double h, std::vector<double>& y);
   template <class F> double cash_karp_step(F& f, double t, double h, const std::vector<double>& y);
   template <class F> double pair_step(F& f, double t, double h, const std::vector<double>& y);
+  template <class F> void pair_stage(F& f, std::size_t i, double t, double h, const std::vector<double>& y);
+  template <class F> void extend(F& f);
   template <class F, class G> void advance_pair(F& f, double& t, double t_end, std::vector<double>& y, G& after_step);
   template <class G> void advance_group(double& t, double t_end, std::vector<double>& y, G& after_step);
   void group_step(double t, double h, const std::vector<double>& y);
@@ -178,6 +182,7 @@ class OdeSolver {
   double log_err_prev_ = std::log(1e-4);  // the PI controller's memory: log of the last accepted step's ratio
   bool rejected_last_ = false;
   bool ahead_ = false;
+  bool extended_ = false;  // K_ holds the last step's extra stages (extend)
   std::ptrdiff_t f_at_ = -1;  // the stage of K_ that holds f(ti_, yi_); −1: none
   Changes after_changes_ = Changes::unknown;
 };
@@ -236,6 +241,33 @@ double OdeSolver::cash_karp_step(F& f, double t, double h, const std::vector<dou
   return error_ratio(y, out_, err_);
 }
 
+// Stage i of the pair's step from (t, y) by h into K_: f at y + h(c_i k_1 +
+// Σ_{j<i} a_ij (k_j − k_1)), its argument left in tmp_ (see pair_step for why
+// differences from k_1).
+template <class F>
+void OdeSolver::pair_stage(F& f, std::size_t i, double t, double h, const std::vector<double>& y) {
+  const ButcherTableau& T = *tab_;
+  const std::size_t n = y.size();
+  const double* a = T.a + i * (i - 1) / 2;
+  for (std::size_t m = 0; m < n; ++m) {
+    const double k1 = K_[m];
+    double acc = T.c[i] * k1;
+    for (std::size_t j = 1; j < i; ++j) acc += a[j] * (K_[j * n + m] - k1);
+    tmp_[m] = y[m] + h * acc;
+  }
+  eval(f, t + T.c[i] * h, tmp_, std::span<double>(K_).subspan(i * n, n));
+}
+
+// The interpolant's extra stages (Verner's pairs) for the last accepted step,
+// [t0_, t0_ + hlast_] from ys_: evaluated once in a step an output time falls in.
+template <class F>
+void OdeSolver::extend(F& f) {
+  if (extended_) return;
+  for (auto i = static_cast<std::size_t>(tab_->stages); i < static_cast<std::size_t>(tab_->dense_stages); ++i)
+    pair_stage(f, i, t0_, hlast_, ys_);
+  extended_ = true;
+}
+
 // One step of the embedded pair: the kept solution into out_, h·Σ(b − bhat)k into
 // err_; stages into K_. An FSAL pair starts from the last stage of the step before.
 // Stages are y + h(c_i k_1 + Σ_j a_ij (k_j − k_1)) and the solution y + h(k_1 +
@@ -251,16 +283,8 @@ double OdeSolver::pair_step(F& f, double t, double h, const std::vector<double>&
   const auto stage = [&](std::size_t i) { return std::span<double>(K_).subspan(i * n, n); };
   if (f_at_ < 0) eval(f, t, y, stage(0));
   else if (f_at_ > 0) std::copy_n(K_.begin() + f_at_ * static_cast<std::ptrdiff_t>(n), n, K_.begin());
-  for (std::size_t i = 1; i < s; ++i) {
-    const double* a = T.a + i * (i - 1) / 2;
-    for (std::size_t m = 0; m < n; ++m) {
-      const double k1 = K_[m];
-      double acc = T.c[i] * k1;
-      for (std::size_t j = 1; j < i; ++j) acc += a[j] * (K_[j * n + m] - k1);
-      tmp_[m] = y[m] + h * acc;
-    }
-    eval(f, t + T.c[i] * h, tmp_, stage(i));
-  }
+  extended_ = false;
+  for (std::size_t i = 1; i < s; ++i) pair_stage(f, i, t, h, y);
   for (std::size_t m = 0; m < n; ++m) {
     const double k1 = K_[m];
     double acc = k1, err = 0;
@@ -393,6 +417,7 @@ void OdeSolver::advance_pair(F& f, double& t, double t_end, std::vector<double>&
   }
   while (true) {
     if (ahead_ && t_end < ti_) {
+      extend(f);
       interpolate(t_end, y);
       break;
     }

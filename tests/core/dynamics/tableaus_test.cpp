@@ -4,7 +4,8 @@
 // Theorem 2.13) for b through the pair's order and for bhat through the embedded
 // order, a failed condition one order up (the order is exact, so the error
 // estimate has the power of h the step control assumes), FSAL where claimed, and
-// the interpolants' own conditions Σ b_i(θ) Φ_i(t) = θ^ρ(t)/γ(t) (HNW I §II.6).
+// the interpolants' own conditions Σ b_i(θ) Φ_i(t) = θ^ρ(t)/γ(t) (HNW I §II.6),
+// over their extra stages where they have them (Verner's pairs).
 #include "core/dynamics/tableaus.hpp"
 
 #include <gtest/gtest.h>
@@ -29,12 +30,13 @@ struct Tree {
   std::vector<double> g, g_abs;
 };
 
-std::vector<Tree> trees(const ButcherTableau& T, int max) {
-  const auto s = static_cast<std::size_t>(T.stages);
+// Over the first `stages` stages: the step's, or with the interpolant's extra ones.
+std::vector<Tree> trees(const ButcherTableau& T, int max, int stages) {
+  const auto s = static_cast<std::size_t>(stages);
   std::vector<Tree> all;
   const auto Ag = [&](const std::vector<double>& g, bool abs) {
     std::vector<double> out(s, 0.0);
-    for (int i = 1; i < T.stages; ++i)
+    for (int i = 1; i < stages; ++i)
       for (int j = 0; j < i; ++j) out[static_cast<std::size_t>(i)] += (abs ? std::abs(T.at(i, j)) : T.at(i, j)) * g[static_cast<std::size_t>(j)];
     return out;
   };
@@ -97,7 +99,9 @@ TEST(Tableaus, RowSumsAreTheNodes) {
   for (SolverMethod m : kPairs) {
     const ButcherTableau& T = *butcher_tableau(m);
     EXPECT_EQ(T.c[0], 0.0) << to_string(m);
-    for (int i = 1; i < T.stages; ++i) {
+    // The interpolant's extra stages too (dense_stages ≥ stages).
+    EXPECT_GE(T.dense_stages, T.stages) << to_string(m);
+    for (int i = 1; i < T.dense_stages; ++i) {
       double sum = 0, size = 0;
       for (int j = 0; j < i; ++j) sum += T.at(i, j), size += std::abs(T.at(i, j));
       // 1e-15 of the row's size: Verner's rows reach |a_ij| ~ 200 summing to c ~ 1,
@@ -111,7 +115,7 @@ TEST(Tableaus, RowSumsAreTheNodes) {
 TEST(Tableaus, OrderConditionsHoldThroughTheStatedOrders) {
   for (SolverMethod m : kPairs) {
     const ButcherTableau& T = *butcher_tableau(m);
-    const auto all = trees(T, T.order + 1);
+    const auto all = trees(T, T.order + 1, T.stages);
     // 64 ε of the rounding scale: the exact coefficients satisfy the conditions
     // exactly, their doubles up to a few ε of Σ|b_i| g_abs_i; a wrong digit in any
     // coefficient is off by ≥ 1e-10 of it.
@@ -127,7 +131,7 @@ TEST(Tableaus, OrderConditionsHoldThroughTheStatedOrders) {
 TEST(Tableaus, TheTreesAreCountedRight) {
   // A check on the generator itself: 1, 1, 2, 4, 9, 20, 48, 115, 286 trees of
   // orders 1..9 (OEIS A000081), 486 in all.
-  const auto all = trees(*butcher_tableau(SolverMethod::vern9), 9);
+  const auto all = trees(*butcher_tableau(SolverMethod::vern9), 9, 16);
   std::vector<int> per(10, 0);
   for (const Tree& t : all) ++per[static_cast<std::size_t>(t.order)];
   EXPECT_EQ(per, (std::vector<int>{0, 1, 1, 2, 4, 9, 20, 48, 115, 286}));
@@ -146,23 +150,34 @@ TEST(Tableaus, InterpolantsMeetTheirConditionsAndTheStepsEnds) {
   for (SolverMethod m : kPairs) {
     const ButcherTableau& T = *butcher_tableau(m);
     if (T.dense_degree == 0) continue;
-    const auto all = trees(T, T.dense_order + 1);
-    const auto s = static_cast<std::size_t>(T.stages), deg = static_cast<std::size_t>(T.dense_degree);
+    // Over every stage the interpolant uses (Verner's extra ones too).
+    const auto all = trees(T, T.dense_order + 1, T.dense_stages);
+    const auto s = static_cast<std::size_t>(T.dense_stages), deg = static_cast<std::size_t>(T.dense_degree);
     for (double theta : {0.0, 0.3, 0.7, 1.0}) {
-      std::vector<double> w(s, 0.0);
+      // b_i(θ), and the size of what rounding acts on in it, Σ_p |r_ip| θ^p: the
+      // polynomials cancel (Verner's coefficients reach 1e5 for weights of order
+      // 1), so their own rounding, not |b_i(θ)|, sets the scale.
+      std::vector<double> w(s, 0.0), w_abs(s, 0.0);
       for (std::size_t i = 0; i < s; ++i)
-        for (std::size_t p = 0; p < deg; ++p) w[i] += T.dense[i * deg + p] * std::pow(theta, static_cast<double>(p + 1));
+        for (std::size_t p = 0; p < deg; ++p) {
+          const double term = T.dense[i * deg + p] * std::pow(theta, static_cast<double>(p + 1));
+          w[i] += term, w_abs[i] += std::abs(term);
+        }
       for (const Tree& t : all) {
         if (t.order > T.dense_order) continue;
         double phi = 0, scale = 1.0 / t.gamma;
-        for (std::size_t i = 0; i < s; ++i) phi += w[i] * t.g[i], scale += std::abs(w[i]) * t.g_abs[i];
+        for (std::size_t i = 0; i < s; ++i) phi += w[i] * t.g[i], scale += w_abs[i] * t.g_abs[i];
         // The same rounding scale as above, times 8 for the powers of θ.
         EXPECT_LE(std::abs(phi - std::pow(theta, t.order) / t.gamma), 512 * eps * scale)
             << to_string(m) << " θ " << theta << " tree of order " << t.order;
       }
       // θ = 1 is the step's end: b_i(1) = b_i (the interpolant is continuous).
+      // An extra stage has no weight there.
       if (theta == 1.0) {
-        for (std::size_t i = 0; i < s; ++i) EXPECT_NEAR(w[i], T.b[i], 64 * eps * (1 + std::abs(T.b[i]))) << to_string(m);
+        for (std::size_t i = 0; i < s; ++i) {
+          const double b = i < static_cast<std::size_t>(T.stages) ? T.b[i] : 0.0;
+          EXPECT_NEAR(w[i], b, 64 * eps * (1 + w_abs[i])) << to_string(m) << " stage " << i;
+        }
       }
     }
   }
