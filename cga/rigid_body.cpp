@@ -176,7 +176,7 @@ double RigidBodies::error_ratio(const Model& m, std::span<const double> y, std::
 // inverse); Π = R̃ L R and L = R Π R̃ through RotorGroup::matrix, the rotation
 // of R / √(R R̃), as the derivative reads a drifted rotor.
 void RigidBodies::group_step(const Model& m, core::SolverMethod method, double t, double h, std::span<const double> y,
-                             std::span<double> out, std::span<double> err) {
+                             std::span<double> out, std::span<double> err, std::span<const char> asleep) {
   using G = RotorGroup;
   const auto body_of = [&](std::size_t b) {
     const Body& body = m.bodies[b];
@@ -197,7 +197,7 @@ void RigidBodies::group_step(const Model& m, core::SolverMethod method, double t
     put(s, at.rot, state.rotation.rotation);
     put(s, at.l, bivector_of_axial(vector3(G::matrix(state.rotation.rotation) * state.rotation.momentum)));
   };
-  core::group_step_bodies<G>(m.effects, m.bodies.size(), Model::stride, method, t, h, y, out, err, body_of, read, write);
+  core::group_step_bodies<G>(m.effects, m.bodies.size(), Model::stride, method, t, h, y, out, err, asleep, body_of, read, write);
 }
 
 void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sample& s) {

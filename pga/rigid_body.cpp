@@ -171,7 +171,7 @@ double RigidBodies::error_ratio(const Model& m, std::span<const double> y, std::
 // a motor). Π = Rᵀ L and L = R Π through MotorGroup::matrix, exact for a
 // drifted motor; L and P are the momentum line's moment and direction.
 void RigidBodies::group_step(const Model& m, core::SolverMethod method, double t, double h, std::span<const double> y,
-                             std::span<double> out, std::span<double> err) {
+                             std::span<double> out, std::span<double> err, std::span<const char> asleep) {
   using G = MotorGroup;
   const auto body_of = [&](std::size_t b) {
     const Body& body = m.bodies[b];
@@ -192,7 +192,7 @@ void RigidBodies::group_step(const Model& m, core::SolverMethod method, double t
     put(s, at.motor, cga::widen<Motor::blades>(translator(state.translation.x) * project<1 | kEuclideanLine>(turned)));
     put(s, at.momentum, line(state.translation.momentum, G::matrix(turned) * state.rotation.momentum));
   };
-  core::group_step_bodies<G>(m.effects, m.bodies.size(), Model::stride, method, t, h, y, out, err, body_of, read, write);
+  core::group_step_bodies<G>(m.effects, m.bodies.size(), Model::stride, method, t, h, y, out, err, asleep, body_of, read, write);
 }
 
 void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sample& s) {

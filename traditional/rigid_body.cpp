@@ -243,7 +243,8 @@ namespace {
 // that of q/|q|, as everywhere in this backend).
 template <class G>
 void group_step_in(const RigidBodies::Model& m, core::SolverMethod method, double t, double h,
-                   std::span<const double> y, std::span<double> out, std::span<double> err) {
+                   std::span<const double> y, std::span<double> out, std::span<double> err,
+                   std::span<const char> asleep) {
   const auto body_of = [&](std::size_t b) {
     const RigidBodies::Body& body = m.bodies[b];
     return core::GroupBody{body.inv_mass, body.mass, body.inv_inertia};
@@ -265,14 +266,14 @@ void group_step_in(const RigidBodies::Model& m, core::SolverMethod method, doubl
     put(s, at.rot, r);
     put(s, at.l, Vec(G::matrix(r) * state.rotation.momentum));
   };
-  core::group_step_bodies<G>(m.effects, m.bodies.size(), m.stride, method, t, h, y, out, err, body_of, read, write);
+  core::group_step_bodies<G>(m.effects, m.bodies.size(), m.stride, method, t, h, y, out, err, asleep, body_of, read, write);
 }
 }  // namespace
 
 void RigidBodies::group_step(const Model& m, core::SolverMethod method, double t, double h, std::span<const double> y,
-                             std::span<double> out, std::span<double> err) {
-  if (m.rotation == core::Rotation::matrix) group_step_in<MatrixGroup>(m, method, t, h, y, out, err);
-  else group_step_in<QuaternionGroup>(m, method, t, h, y, out, err);
+                             std::span<double> out, std::span<double> err, std::span<const char> asleep) {
+  if (m.rotation == core::Rotation::matrix) group_step_in<MatrixGroup>(m, method, t, h, y, out, err, asleep);
+  else group_step_in<QuaternionGroup>(m, method, t, h, y, out, err, asleep);
 }
 
 void RigidBodies::observe(const Model& m, std::span<const double> y, core::Sample& s) {

@@ -60,7 +60,7 @@ struct RigidBodies {
   // A Lie-group method's step (core/dynamics/rigid_body.hpp) through traditional/rotation_group.hpp: the matrix by
   // Rodrigues' formula, or the quaternion.
   static void group_step(const Model& m, core::SolverMethod method, double t, double h, std::span<const double> y,
-                         std::span<double> out, std::span<double> err);
+                         std::span<double> out, std::span<double> err, std::span<const char> asleep = {});
 
   // --- collisions (§2.4–2.5); called only when the scene lists the effect ---
   static collision::Pose pose(const Model& m, std::span<const double> y, std::size_t b);

@@ -12,7 +12,12 @@
 namespace gacompare::core {
 
 // An island's bodies as a model of their own, their state copied out of the
-// world's and back, and the scene's solver for them alone.
+// world's and back, and the scene's solver for them alone. A Lie-group method
+// (rkmk4, rkmk45, crouch_grossman4) steps them through the backend's
+// group_step of this model, wired as the world's solver is
+// (set_group_step_of, core/dynamics/ode.hpp): every body's step reads only
+// its own state and forces (core/dynamics/lie_bodies.hpp), so an island and
+// a time-of-impact trial move on the group as they move in the world.
 template <class Bodies>
 struct Subsystem {
   using Model = typename Bodies::Model;
@@ -25,6 +30,7 @@ struct Subsystem {
     solver.set_error_norm([this, spec](std::span<const double> a, std::span<const double> b, std::span<const double> e) {
       return Bodies::error_ratio(model, a, b, e, spec.abs_tol, spec.rel_tol);
     });
+    set_group_step_of<Bodies>(solver, model);  // `model` is a member: it lives as long as the solver
   }
   Subsystem(const Subsystem&) = delete;
   Subsystem& operator=(const Subsystem&) = delete;
@@ -39,7 +45,8 @@ struct Subsystem {
       std::copy_n(ys.begin() + static_cast<long>(k * stride), stride, y.begin() + static_cast<long>(group[k] * stride));
   }
   // Integrates ys from t to t_end (the island's forces are timed as `forces`
-  // in `profile`, like the world's).
+  // in `profile`, like the world's; a Lie-group method evaluates them inside
+  // its step and ignores f, timed as `integrate`, like the world's).
   void integrate(double t, double t_end, std::vector<double>& ys, Profile& profile) {
     auto f = [&](double tt, std::span<const double> yy, std::span<double> dy) {
       ScopedStage timed(profile, Stage::forces);

@@ -50,20 +50,23 @@ struct GroupBody {
 // A Lie-group step of every body of a backend's state (its group_step),
 // written once: body b's block is [b·stride, (b + 1)·stride); body_of(b)
 // gives its GroupBody, read(y, b) unpacks its BodyState<G> (Π = R⁻¹ L) and
-// write(s, b, state) packs one (L = R Π). A static body is copied. With
-// rkmk45, err gets out less the embedded solution, in the stored numbers.
+// write(s, b, state) packs one (L = R Π). A static body, and one flagged in
+// `asleep` (empty, or a flag per body: core/collision/sleep.hpp), is copied,
+// its err zero: it does not move, as its derivative is zero. With rkmk45, err
+// gets out less the embedded solution, in the stored numbers.
 template <lie::RotationGroup G, class BodyOf, class Read, class Write>
 void group_step_bodies(const BodyEffects& effects, std::size_t count, std::size_t stride, SolverMethod method, double t,
                        double h, std::span<const double> y, std::span<double> out, std::span<double> err,
-                       BodyOf&& body_of, Read&& read, Write&& write) {
+                       std::span<const char> asleep, BodyOf&& body_of, Read&& read, Write&& write) {
   const lie::GroupMethod group = group_method(method);
   const bool pair = method == SolverMethod::rkmk45;
   // Each body's slices of out and err are its own: bodies in parallel (core/parallel.hpp).
   for_each_index(count, [&](std::size_t b) {
     const GroupBody body = body_of(b);
     const std::size_t at = b * stride;
-    if (body.inv_mass == 0) {
+    if (body.inv_mass == 0 || (!asleep.empty() && asleep[b])) {
       std::copy_n(y.begin() + static_cast<long>(at), stride, out.begin() + static_cast<long>(at));
+      if (pair) std::fill_n(err.begin() + static_cast<long>(at), stride, 0.0);
       return;
     }
     const BodyForces forces{&effects, b, body.mass, body.inv_inertia};

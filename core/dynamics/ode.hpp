@@ -133,6 +133,7 @@ class OdeSolver {
   using GroupStepFn = std::function<void(SolverMethod, double, double, std::span<const double>, std::span<double>,
                                          std::span<double>)>;
   void set_group_step(GroupStepFn step) { group_step_ = std::move(step); }
+  SolverMethod method() const { return spec_.method; }
 
  private:
   template <class F> void eval(F& f, double t, std::span<const double> y, std::span<double> dy);
@@ -186,6 +187,23 @@ class OdeSolver {
   std::ptrdiff_t f_at_ = -1;  // the stage of K_ that holds f(ti_, yi_); −1: none
   Changes after_changes_ = Changes::unknown;
 };
+
+// Gives `solver` the Lie-group step of `model` when its method is one (else
+// nothing): B::group_step(model, method, t, h, y, out, err, extra...), with B
+// a simulator Backend for the world's state (core/dynamics/simulator.hpp
+// solver_for) or a backend's RigidBodies for the bodies an island or a
+// time-of-impact trial integrates alone (core/collision/subsystem.hpp). The
+// one wiring of both, so that those bodies step on their group exactly as
+// the world's do. `extra` (the world's mask of sleeping bodies) is copied
+// into the step; `model` must outlive the solver.
+template <class B, class... Extra>
+void set_group_step_of(OdeSolver& solver, const typename B::Model& model, Extra... extra) {
+  if (!is_lie_group(solver.method())) return;
+  solver.set_group_step([&model, extra...](SolverMethod method, double t, double h, std::span<const double> y,
+                                           std::span<double> out, std::span<double> err) {
+    B::group_step(model, method, t, h, y, out, err, extra...);
+  });
+}
 
 // ---------------------------------------------------------------------------------
 

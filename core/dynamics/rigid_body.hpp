@@ -59,8 +59,11 @@ concept RigidBodyDynamics = requires(const Scene& scene, const Model& compiled, 
   // crouch_grossman4): each moving body through core::lie::body_step on the
   // backend's own rotation (its RotationGroup), L = R Π read and written at
   // the step's ends; out the state after h, err (rkmk45) the 5th-order state
-  // less the embedded 4th-order one, in the stored numbers, for error_ratio.
+  // less the embedded 4th-order one, in the stored numbers, for error_ratio;
+  // like the derivative, the bodies flagged in a mask of sleeping ones do
+  // not move (copied, their err zero).
   { B::group_step(m, SolverMethod{}, t, t, y, out, out) };
+  { B::group_step(m, SolverMethod{}, t, t, y, out, out, std::span<const char>{}) };
 };
 
 // What the collision stages read of a body at a state: its pose (centre of

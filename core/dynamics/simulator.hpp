@@ -83,7 +83,8 @@ std::vector<int> particle_layout(std::size_t particles);
 std::vector<double> output_times(const Scene& scene);
 
 // The scene's solver with the backend's physical error norm (core/model/scene.hpp
-// ErrorNorm). The norm refers to `model`, which must outlive the solver.
+// ErrorNorm) and, for a Lie-group method, its group step (set_group_step_of,
+// core/dynamics/ode.hpp). Both refer to `model`, which must outlive the solver.
 template <Backend B>
 OdeSolver solver_for(const Scene& scene, const typename B::Model& model, std::size_t n) {
   OdeSolver solver(scene.solver, n, B::velocity_of(model));
@@ -92,11 +93,7 @@ OdeSolver solver_for(const Scene& scene, const typename B::Model& model, std::si
     return B::error_ratio(model, scene.solver, y0, y1, err);
   });
   solver.set_step_budget(scene.limits.max_steps);
-  if (is_lie_group(scene.solver.method))
-    solver.set_group_step([&model](SolverMethod method, double t, double h, std::span<const double> y,
-                                   std::span<double> out, std::span<double> err) {
-      B::group_step(model, method, t, h, y, out, err);
-    });
+  set_group_step_of<B>(solver, model);
   // Component i's owner, by the backend's own naming of a non-finite state
   // (only asked once a run has failed).
   solver.set_describe([&model, n](std::size_t i) {

@@ -79,10 +79,6 @@ std::string lie_group_refusal(const Scene& s) {
     return method + " steps rigid bodies' rotations on their group and cannot integrate particles; the scene has "
                     "particles (use a method of the flat state, such as rk4 or dopri5)";
   if (s.bodies.empty()) return method + " steps rigid bodies' rotations on their group; the scene has no bodies";
-  if (s.find_effect<Collisions>())
-    return method + " cannot take the collisions effect: the collision stages re-integrate islands and time-of-impact "
-                    "trials on their own through the flat derivative (core/collision/subsystem.hpp), which a Lie-group "
-                    "method does not step";
   return "";
 }
 

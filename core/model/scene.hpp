@@ -300,9 +300,11 @@ struct Scene {
 Scene load_scene(const std::filesystem::path& file, const Limits& limits = {});
 // Same, from text already in memory; `file` is used in messages and to resolve meshes.
 Scene parse_scene(const std::string& text, const std::filesystem::path& file, const Limits& limits = {});
-// Why the scene cannot take its Lie-group solver.method (particles, no bodies,
-// collisions), "" when it can or its method is not one: the loader refuses at
-// /solver/method, and simulate() refuses a scene built in code.
+// Why the scene cannot take its Lie-group solver.method (particles, no
+// bodies), "" when it can or its method is not one: the loader refuses at
+// /solver/method, and simulate() refuses a scene built in code. Collisions
+// are taken: islands and time-of-impact trials step on the group too
+// (core/collision/subsystem.hpp).
 std::string lie_group_refusal(const Scene& scene);
 // Throws the loader's refusal "FILE: JSON/PATH: what" (for checks made after loading).
 [[noreturn]] void refuse_at(const std::filesystem::path& file, const std::string& path, const std::string& what);

@@ -375,19 +375,11 @@ std::vector<BadCase> bad_cases() {
       {"MissingMethod",
        erase("/solver/method"),
        {": /solver/method: expected one of euler, rk4", "got nothing"}},
-      // The Lie-group methods step bodies only, and not through collisions.
+      // The Lie-group methods step bodies only (SceneLoad.LieGroupMethodsTakeCollisions: with collisions too).
       {"LieGroupMethodWithParticles",
        set("/solver/method", "rkmk4"),
        {": /solver/method: solver.method 'rkmk4' steps rigid bodies' rotations on their group and cannot "
         "integrate particles; the scene has particles"}},
-      {"LieGroupMethodWithCollisions",
-       [] {
-         json j = json::parse(kBase);
-         j["solver"]["method"] = "crouch_grossman4";
-         for (const char* key : {"particles", "constraints", "generators"}) j.erase(key);
-         return j.dump();
-       },
-       {": /solver/method: solver.method 'crouch_grossman4' cannot take the collisions effect"}},
       {"LieGroupMethodWithoutBodies",
        [] {
          json j = json::parse(kBase);
@@ -663,6 +655,20 @@ TEST(SceneLoad, TheBaseOfTheBadCasesIsValid) {
   const Scene s = parse_scene(kBase, kCaseFile);
   EXPECT_EQ(s.particles.size(), 2u);
   EXPECT_EQ(s.generators.size(), 2u);
+}
+
+// The Lie-group methods take the collisions effect: the collision stages'
+// islands and time-of-impact trials step on the group as the world does
+// (core/collision/subsystem.hpp). The base's bodies without its particles.
+TEST(SceneLoad, LieGroupMethodsTakeCollisions) {
+  for (const char* method : {"rkmk4", "rkmk45", "crouch_grossman4"}) {
+    json j = json::parse(kBase);
+    j["solver"]["method"] = method;
+    for (const char* key : {"particles", "constraints", "generators"}) j.erase(key);
+    const Scene s = parse_scene(j.dump(), kCaseFile);
+    EXPECT_NE(s.find_effect<Collisions>(), nullptr) << method;
+    EXPECT_EQ(lie_group_refusal(s), "") << method;
+  }
 }
 
 TEST(SceneLoad, OrientationIsCheckedButNotNormalised) {
