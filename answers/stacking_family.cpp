@@ -192,7 +192,7 @@ StackCase pyramid(ContactSolverMethod method, int layers, bool square, double mu
   // normal impulses they change) do not settle in the direct solve's rounds,
   // and the sweeps after them end on their cap.
   if (mu > 0)
-    c.open = "in the landings' impacts the friction bounds do not settle in the direct solve's rounds, and 5 to 136 "
+    c.open = "in the landings' impacts the friction bounds do not settle in the direct solve's rounds, and 5 to 21 "
              "solves of the landings (by case and backend) end on the sweep cap; the wall's first landings also move its "
              "fourth layer ~1e-4 m sideways";
   return c;
