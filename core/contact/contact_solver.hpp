@@ -361,15 +361,23 @@ class ContactSolver {
     // `motion`; the sweeps that follow then hold friction in its disc and
     // meet `converged` (a converged solve leaves them one sweep to check).
     // Rows with pull[k] set are bilateral (their impulse may be negative: the
-    // position projection below). Returns whether every round was solved.
+    // position projection below). `known` (optional): the Delassus matrix of
+    // the same rows, bodies and arms, from an earlier solve of this response
+    // (its normal rows first: friction lines after them are left out), used
+    // instead of building it again; or, empty, where this solve leaves its own.
+    // Returns whether every round was solved.
     bool direct(std::vector<Row>& rows, std::vector<Friction>& frictions, Motions& motion,
-                const std::vector<char>& moving, double converged, const std::vector<char>& pull = {}) const {
+                const std::vector<char>& moving, double converged, const std::vector<char>& pull = {},
+                Eigen::SparseMatrix<double>* known = nullptr) const {
       if (rows.empty()) return true;
       bool solved = true;
       const std::vector<Line> lines = lines_of(rows, frictions);
       const auto n = static_cast<Eigen::Index>(lines.size()), nr = static_cast<Eigen::Index>(rows.size());
       contact::Blcp p;
-      p.A = delassus(lines, motion, moving);
+      if (known && known->rows() == n) p.A = *known;
+      else if (known && known->rows() > n && frictions.empty()) p.A = known->topLeftCorner(n, n);
+      else p.A = delassus(lines, motion, moving);
+      if (known && known->rows() == 0) *known = p.A;
       Eigen::VectorXd held(n);
       for (Eigen::Index k = 0; k < nr; ++k) held[k] = rows[static_cast<std::size_t>(k)].lambda;
       for (std::size_t q = 0; q < frictions.size(); ++q)
@@ -635,9 +643,13 @@ class ContactSolver {
     // with each other), the least-squares answer can be large; it is then
     // dropped for the pushing correction alone, and counted
     // (projections_refused).
+    // `a`: the velocity solve's Delassus matrix (direct), whose normal rows
+    // are these rows with the same arms: the projection's matrix, not built
+    // again.
     void project_positions(const Model& m, std::span<double> y, BodyIndices world, const std::vector<Row>& rows,
                            const Motions& motion, const std::vector<int>& body_of, const std::vector<char>& correct,
-                           const std::vector<char>& parting, const std::vector<char>& moves) const {
+                           const std::vector<char>& parting, const std::vector<char>& moves,
+                           Eigen::SparseMatrix<double>& a) const {
       const double tol = setup.settings.penetration_tolerance, settle = 0.25 * tol;
       // Frictionless pairs only: friction holds a body against the sideways
       // push a tilt gives, and projecting a pair with friction moved what its
@@ -665,7 +677,7 @@ class ContactSolver {
         std::vector<Friction> none;
         // Solved to a billionth of the tolerance; the sweeps cannot pull, so
         // they only finish a solve the direct method left unsolved (counted).
-        if (!direct(fix, none, pseudo, moves, 1e-9 * tol, bilateral))
+        if (!direct(fix, none, pseudo, moves, 1e-9 * tol, bilateral, &a))
           solve(fix, pseudo, 1e-6 * tol, counters.correction_cap_hits);
         return pseudo;
       };
@@ -744,7 +756,8 @@ class ContactSolver {
       const double converged = kVelocityTolerance * (1 + scale);
       const bool direct_solve = setup.settings.contact_solver == ContactSolverMethod::direct;
       const std::vector<char> moves = direct_solve ? moving(world, body_of) : std::vector<char>{};
-      if (direct_solve) direct(rows, frictions, motion, moves, converged);
+      Eigen::SparseMatrix<double> a;  // the direct solve's Delassus matrix, for its projection
+      if (direct_solve) direct(rows, frictions, motion, moves, converged, {}, &a);
       counters.add_residual(solve(rows, motion, converged, counters.sweep_cap_hits, frictions));
       // Sliding: friction on the rim of its disc and the contact still slipping
       // after the solve. (On the rim alone is not sliding: the corners of a face
@@ -772,7 +785,7 @@ class ContactSolver {
       for (std::size_t hi = 0; hi < hits.size(); ++hi)
         correct[hi] = hits[hi].sat.depth > 0.5 * tol && (resting_pair[hi] || !parting[hi]);
       for (std::size_t k = 0; k < motion.size(); ++k) Bodies::store(m, y, static_cast<std::size_t>(body_of[k]), motion[k]);
-      if (direct_solve) project_positions(m, y, world, rows, motion, body_of, correct, parting, moves);
+      if (direct_solve) project_positions(m, y, world, rows, motion, body_of, correct, parting, moves, a);
       else correct_positions(m, y, rows, motion, body_of, correct);
       friction_displacement(m, y, rows, frictions, motion, body_of, dt);
     }
