@@ -301,7 +301,12 @@ class ContactSolver {
     // algebra: column j is what a unit impulse along line j (pushed into a
     // body at rest, as the sweeps push) does to every line's velocity
     // (normal_velocity). Only a body both lines share couples them; static
-    // bodies are skipped (they take no impulse).
+    // bodies are skipped (they take no impulse). Written column by column
+    // into the compressed storage (no triplets to sort): column j's rows are
+    // the lines at its two bodies, each list in line order, merged, with the
+    // two bodies' parts summed where line i shares both; every such entry is
+    // stored, zeros too, so the pattern (and the factorisation's ordering)
+    // is the same whatever the values.
     Eigen::SparseMatrix<double> delassus(const std::vector<Line>& lines, const Motions& motion,
                                          const std::vector<char>& moving) const {
       std::vector<std::vector<std::pair<std::size_t, double>>> at(motion.size());  // slot → (line, sign)
@@ -310,17 +315,44 @@ class ContactSolver {
         if (moving[lines[k].sb]) at[lines[k].sb].emplace_back(k, 1.0);
       }
       const auto arm = [&](const Line& l, double sign) -> const typename Bodies::Arm& { return sign > 0 ? *l.arm_b : *l.arm_a; };
-      std::vector<Eigen::Triplet<double>> t;
-      for (std::size_t s = 0; s < at.size(); ++s)
-        for (const auto& [j, sj] : at[s]) {
-          Motion unit = Bodies::at_rest(motion[s]);
-          Bodies::push(unit, arm(lines[j], sj), lines[j].dir, sj);
-          for (const auto& [i, si] : at[s])
-            t.emplace_back(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j),
-                           si * Bodies::normal_velocity(unit, arm(lines[i], si), lines[i].dir));
+      // Line j's column part through slot s (where j has sign sj): (line, value), in line order.
+      using Part = std::vector<std::pair<Eigen::Index, double>>;
+      const auto part = [&](std::size_t s, std::size_t j, double sj, Part& out) {
+        out.clear();
+        if (!moving[s]) return;
+        Motion unit = Bodies::at_rest(motion[s]);
+        Bodies::push(unit, arm(lines[j], sj), lines[j].dir, sj);
+        for (const auto& [i, si] : at[s])
+          out.emplace_back(static_cast<Eigen::Index>(i), si * Bodies::normal_velocity(unit, arm(lines[i], si), lines[i].dir));
+      };
+      const auto n = static_cast<Eigen::Index>(lines.size());
+      std::size_t most = 0;
+      for (const auto& l : at) most += l.size() * l.size();
+      Eigen::SparseMatrix<double> a(n, n);
+      a.resizeNonZeros(static_cast<Eigen::Index>(most));
+      Part pa, pb;
+      Eigen::Index nz = 0;
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const Line& l = lines[static_cast<std::size_t>(j)];
+        a.outerIndexPtr()[j] = static_cast<int>(nz);
+        part(l.sa, static_cast<std::size_t>(j), -1.0, pa), part(l.sb, static_cast<std::size_t>(j), 1.0, pb);
+        const bool a_first = l.sa < l.sb;  // the parts summed in slot order
+        std::size_t u = 0, v = 0;
+        while (u < pa.size() || v < pb.size()) {
+          Eigen::Index i;
+          double x;
+          if (v == pb.size() || (u < pa.size() && pa[u].first < pb[v].first)) {
+            i = pa[u].first, x = pa[u].second, ++u;
+          } else if (u == pa.size() || pb[v].first < pa[u].first) {
+            i = pb[v].first, x = pb[v].second, ++v;
+          } else {
+            i = pa[u].first, x = a_first ? pa[u].second + pb[v].second : pb[v].second + pa[u].second, ++u, ++v;
+          }
+          a.innerIndexPtr()[nz] = static_cast<int>(i), a.valuePtr()[nz] = x, ++nz;
         }
-      Eigen::SparseMatrix<double> a(static_cast<Eigen::Index>(lines.size()), static_cast<Eigen::Index>(lines.size()));
-      a.setFromTriplets(t.begin(), t.end());  // duplicates (two shared bodies) are summed
+      }
+      a.outerIndexPtr()[n] = static_cast<int>(nz);
+      a.resizeNonZeros(nz);
       return a;
     }
     // Every line's velocity less its target (lines: normal rows' targets; friction: 0).
@@ -491,9 +523,11 @@ class ContactSolver {
     void warm_start(std::vector<Row>& rows, std::vector<Friction>& frictions, Motions& motion, double dt) const {
       if (cache_.empty() || !(dt > 0)) return;
       std::vector<const Cached*> found(rows.size(), nullptr);  // each row's remembered impulses
+      auto pair = cache_.end();  // the pair of the row before: a pair's rows are consecutive
+      std::uint64_t looked = 0;
       for (std::size_t k = 0; k < rows.size(); ++k) {
         Row& r = rows[k];
-        const auto pair = cache_.find(key(r.a, r.b));
+        if (k == 0 || key(r.a, r.b) != looked) looked = key(r.a, r.b), pair = cache_.find(looked);
         if (pair == cache_.end()) continue;
         const double near = 1e-2 * std::min(setup.meshes[r.a]->size(), setup.meshes[r.b]->size());
         double closest = near;
