@@ -35,6 +35,8 @@ class FreeSystem {
     Workspace& w = workspace();
     w.outer.resize(static_cast<std::size_t>(n_) + 1), w.inner.clear(), w.values.clear();
     w.inner.reserve(static_cast<std::size_t>(nnz + n_)), w.values.reserve(static_cast<std::size_t>(nnz + n_));
+    // (Built in vectors, then copied into w.reg: Eigen reads a SparseMatrix, and
+    // converting a Map to one on every factorisation went element by element.)
     Eigen::Index at = 0;
     for (Eigen::Index k = 0; k < n_; ++k) {
       const Eigen::Index c = rows[static_cast<std::size_t>(k)];
@@ -55,10 +57,9 @@ class FreeSystem {
     a_ff_.outerIndexPtr()[n_] = static_cast<int>(at);
     a_ff_.resizeNonZeros(at);
     w.outer[static_cast<std::size_t>(n_)] = static_cast<int>(w.inner.size());
-    const Eigen::Map<const Eigen::SparseMatrix<double>> reg(n_, n_, static_cast<Eigen::Index>(w.inner.size()),
-                                                            w.outer.data(), w.inner.data(), w.values.data());
     if (dense_) {
-      dense_ldlt_.compute(Eigen::MatrixXd(reg));
+      dense_ldlt_.compute(Eigen::MatrixXd(Eigen::Map<const Eigen::SparseMatrix<double>>(
+          n_, n_, static_cast<Eigen::Index>(w.inner.size()), w.outer.data(), w.inner.data(), w.values.data())));
     } else {
       factor_ = &factor_of(w);
     }
@@ -83,7 +84,7 @@ class FreeSystem {
 
  private:
   // The sparse factorisations, kept from one factorisation to the next on
-  // this thread, a few of them: the ordering (AMD) and elimination tree
+  // this thread, eight of them: the ordering (AMD) and elimination tree
   // depend only on the free rows' pattern, and finding them cost as much as
   // the numeric factorisation of a 20-cube column; and a step's velocity
   // solve and its position projection usually factorise the same matrix (the
@@ -102,6 +103,7 @@ class FreeSystem {
   struct Workspace {
     std::vector<int> outer, inner;  // the regularised A_FF being built
     std::vector<double> values;
+    Eigen::SparseMatrix<double> reg;  // the same, when it is factorised
   };
   struct SparseFactor {
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
@@ -109,7 +111,7 @@ class FreeSystem {
     std::vector<double> values;     // the values factorised (empty: none yet)
     std::uint64_t used = 0;         // when last used (the least recent is replaced)
   };
-  static constexpr std::size_t kPatterns = 4;
+  static constexpr std::size_t kPatterns = 8;
   struct Cache {
     std::array<SparseFactor, kPatterns> entries;
     std::uint64_t clock = 0;
@@ -118,21 +120,27 @@ class FreeSystem {
     thread_local Workspace w;
     return w;
   }
-  static const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& factor_of(const Workspace& w) {
+  static const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& factor_of(Workspace& w) {
     thread_local Cache cache;
     SparseFactor* hit = nullptr;
     for (SparseFactor& e : cache.entries)
       if (e.outer == w.outer && e.inner == w.inner) hit = &e;
-    const Eigen::Index n = static_cast<Eigen::Index>(w.outer.size()) - 1;
-    const Eigen::Map<const Eigen::SparseMatrix<double>> m(n, n, static_cast<Eigen::Index>(w.inner.size()),
-                                                          w.outer.data(), w.inner.data(), w.values.data());
+    const auto n = static_cast<Eigen::Index>(w.outer.size()) - 1;
+    const auto matrix = [&]() -> const Eigen::SparseMatrix<double>& {
+      w.reg.resize(n, n);
+      w.reg.resizeNonZeros(static_cast<Eigen::Index>(w.inner.size()));
+      std::ranges::copy(w.outer, w.reg.outerIndexPtr());
+      std::ranges::copy(w.inner, w.reg.innerIndexPtr());
+      std::ranges::copy(w.values, w.reg.valuePtr());
+      return w.reg;
+    };
     if (!hit) {
       hit = &*std::ranges::min_element(cache.entries, {}, &SparseFactor::used);
-      hit->ldlt.analyzePattern(m);
+      hit->ldlt.analyzePattern(matrix());
       hit->outer = w.outer, hit->inner = w.inner, hit->values.clear();
     }
     if (hit->values != w.values) {
-      hit->ldlt.factorize(m);
+      hit->ldlt.factorize(matrix());
       hit->values = w.values;
     }
     hit->used = ++cache.clock;
