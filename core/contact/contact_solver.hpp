@@ -553,10 +553,13 @@ class ContactSolver {
       }
     }
     // The impulses of this solve replace what its pairs had; other pairs (other
-    // islands) keep theirs until forget_old_contacts.
+    // islands) keep theirs until forget_old_contacts. A pair's entry is
+    // emptied, not erased, so that its storage serves the next step (an
+    // empty entry warm starts nothing, as a missing one).
     void remember(std::span<const PairHit> hits, BodyIndices world, const std::vector<Row>& rows,
                   const std::vector<Friction>& frictions, double dt) const {
-      for (const auto& h : hits) cache_.erase(key(world[h.a], world[h.b]));
+      for (const auto& h : hits)
+        if (const auto it = cache_.find(key(world[h.a], world[h.b])); it != cache_.end()) it->second.at.clear();
       if (!(dt > 0)) return;
       for (const auto& r : rows)
         if (r.lambda > 0) {
@@ -740,11 +743,12 @@ class ContactSolver {
       // the solver's sweeps).
       Motions motion;
       std::vector<int> body_of;  // slot → body of the group
-      std::unordered_map<int, std::size_t> slot_of;
+      std::vector<std::size_t> slot_of(world.size(), std::numeric_limits<std::size_t>::max());  // body of the group → slot
       const auto slot = [&](int b) {
-        const auto [it, fresh] = slot_of.emplace(b, motion.size());
-        if (fresh) motion.push_back(Bodies::motion(m, y, static_cast<std::size_t>(b))), body_of.push_back(b);
-        return it->second;
+        std::size_t& s = slot_of[static_cast<std::size_t>(b)];
+        if (s == std::numeric_limits<std::size_t>::max())
+          s = motion.size(), motion.push_back(Bodies::motion(m, y, static_cast<std::size_t>(b))), body_of.push_back(b);
+        return s;
       };
       std::vector<Row> rows;
       std::vector<Friction> frictions;  // none unless a pair has μ > 0

@@ -72,12 +72,14 @@ class FreeSystem {
   // A_FF's range; stops when it no longer gains (the rest lies in the null
   // space and moves nothing).
   Eigen::VectorXd refine(const Eigen::VectorXd& r, Eigen::VectorXd x, double tolerance) const {
-    double last = (r - a_ff_ * x).cwiseAbs().maxCoeff();
+    Eigen::VectorXd residual = r - a_ff_ * x;  // of x, kept for the next round
+    double last = residual.cwiseAbs().maxCoeff();
     for (int k = 0; k < 4 && last > tolerance; ++k) {
-      const Eigen::VectorXd y = x + once(r - a_ff_ * x);
-      const double now = (r - a_ff_ * y).cwiseAbs().maxCoeff();
+      const Eigen::VectorXd y = x + once(residual);
+      Eigen::VectorXd next = r - a_ff_ * y;
+      const double now = next.cwiseAbs().maxCoeff();
       if (!(now < 0.5 * last)) break;
-      x = y, last = now;
+      x = y, last = now, residual.swap(next);
     }
     return x;
   }
