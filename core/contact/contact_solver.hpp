@@ -301,7 +301,12 @@ class ContactSolver {
     // algebra: column j is what a unit impulse along line j (pushed into a
     // body at rest, as the sweeps push) does to every line's velocity
     // (normal_velocity). Only a body both lines share couples them; static
-    // bodies are skipped (they take no impulse).
+    // bodies are skipped (they take no impulse). Written column by column
+    // into the compressed storage (no triplets to sort): column j's rows are
+    // the lines at its two bodies, each list in line order, merged, with the
+    // two bodies' parts summed where line i shares both; every such entry is
+    // stored, zeros too, so the pattern (and the factorisation's ordering)
+    // is the same whatever the values.
     Eigen::SparseMatrix<double> delassus(const std::vector<Line>& lines, const Motions& motion,
                                          const std::vector<char>& moving) const {
       std::vector<std::vector<std::pair<std::size_t, double>>> at(motion.size());  // slot → (line, sign)
@@ -310,17 +315,44 @@ class ContactSolver {
         if (moving[lines[k].sb]) at[lines[k].sb].emplace_back(k, 1.0);
       }
       const auto arm = [&](const Line& l, double sign) -> const typename Bodies::Arm& { return sign > 0 ? *l.arm_b : *l.arm_a; };
-      std::vector<Eigen::Triplet<double>> t;
-      for (std::size_t s = 0; s < at.size(); ++s)
-        for (const auto& [j, sj] : at[s]) {
-          Motion unit = Bodies::at_rest(motion[s]);
-          Bodies::push(unit, arm(lines[j], sj), lines[j].dir, sj);
-          for (const auto& [i, si] : at[s])
-            t.emplace_back(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j),
-                           si * Bodies::normal_velocity(unit, arm(lines[i], si), lines[i].dir));
+      // Line j's column part through slot s (where j has sign sj): (line, value), in line order.
+      using Part = std::vector<std::pair<Eigen::Index, double>>;
+      const auto part = [&](std::size_t s, std::size_t j, double sj, Part& out) {
+        out.clear();
+        if (!moving[s]) return;
+        Motion unit = Bodies::at_rest(motion[s]);
+        Bodies::push(unit, arm(lines[j], sj), lines[j].dir, sj);
+        for (const auto& [i, si] : at[s])
+          out.emplace_back(static_cast<Eigen::Index>(i), si * Bodies::normal_velocity(unit, arm(lines[i], si), lines[i].dir));
+      };
+      const auto n = static_cast<Eigen::Index>(lines.size());
+      std::size_t most = 0;
+      for (const auto& l : at) most += l.size() * l.size();
+      Eigen::SparseMatrix<double> a(n, n);
+      a.resizeNonZeros(static_cast<Eigen::Index>(most));
+      Part pa, pb;
+      Eigen::Index nz = 0;
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const Line& l = lines[static_cast<std::size_t>(j)];
+        a.outerIndexPtr()[j] = static_cast<int>(nz);
+        part(l.sa, static_cast<std::size_t>(j), -1.0, pa), part(l.sb, static_cast<std::size_t>(j), 1.0, pb);
+        const bool a_first = l.sa < l.sb;  // the parts summed in slot order
+        std::size_t u = 0, v = 0;
+        while (u < pa.size() || v < pb.size()) {
+          Eigen::Index i;
+          double x;
+          if (v == pb.size() || (u < pa.size() && pa[u].first < pb[v].first)) {
+            i = pa[u].first, x = pa[u].second, ++u;
+          } else if (u == pa.size() || pb[v].first < pa[u].first) {
+            i = pb[v].first, x = pb[v].second, ++v;
+          } else {
+            i = pa[u].first, x = a_first ? pa[u].second + pb[v].second : pb[v].second + pa[u].second, ++u, ++v;
+          }
+          a.innerIndexPtr()[nz] = static_cast<int>(i), a.valuePtr()[nz] = x, ++nz;
         }
-      Eigen::SparseMatrix<double> a(static_cast<Eigen::Index>(lines.size()), static_cast<Eigen::Index>(lines.size()));
-      a.setFromTriplets(t.begin(), t.end());  // duplicates (two shared bodies) are summed
+      }
+      a.outerIndexPtr()[n] = static_cast<int>(nz);
+      a.resizeNonZeros(nz);
       return a;
     }
     // Every line's velocity less its target (lines: normal rows' targets; friction: 0).
@@ -361,15 +393,23 @@ class ContactSolver {
     // `motion`; the sweeps that follow then hold friction in its disc and
     // meet `converged` (a converged solve leaves them one sweep to check).
     // Rows with pull[k] set are bilateral (their impulse may be negative: the
-    // position projection below). Returns whether every round was solved.
+    // position projection below). `known` (optional): the Delassus matrix of
+    // the same rows, bodies and arms, from an earlier solve of this response
+    // (its normal rows first: friction lines after them are left out), used
+    // instead of building it again; or, empty, where this solve leaves its own.
+    // Returns whether every round was solved.
     bool direct(std::vector<Row>& rows, std::vector<Friction>& frictions, Motions& motion,
-                const std::vector<char>& moving, double converged, const std::vector<char>& pull = {}) const {
+                const std::vector<char>& moving, double converged, const std::vector<char>& pull = {},
+                Eigen::SparseMatrix<double>* known = nullptr) const {
       if (rows.empty()) return true;
       bool solved = true;
       const std::vector<Line> lines = lines_of(rows, frictions);
       const auto n = static_cast<Eigen::Index>(lines.size()), nr = static_cast<Eigen::Index>(rows.size());
       contact::Blcp p;
-      p.A = delassus(lines, motion, moving);
+      if (known && known->rows() == n) p.A = *known;
+      else if (known && known->rows() > n && frictions.empty()) p.A = known->topLeftCorner(n, n);
+      else p.A = delassus(lines, motion, moving);
+      if (known && known->rows() == 0) *known = p.A;
       Eigen::VectorXd held(n);
       for (Eigen::Index k = 0; k < nr; ++k) held[k] = rows[static_cast<std::size_t>(k)].lambda;
       for (std::size_t q = 0; q < frictions.size(); ++q)
@@ -483,9 +523,11 @@ class ContactSolver {
     void warm_start(std::vector<Row>& rows, std::vector<Friction>& frictions, Motions& motion, double dt) const {
       if (cache_.empty() || !(dt > 0)) return;
       std::vector<const Cached*> found(rows.size(), nullptr);  // each row's remembered impulses
+      auto pair = cache_.end();  // the pair of the row before: a pair's rows are consecutive
+      std::uint64_t looked = 0;
       for (std::size_t k = 0; k < rows.size(); ++k) {
         Row& r = rows[k];
-        const auto pair = cache_.find(key(r.a, r.b));
+        if (k == 0 || key(r.a, r.b) != looked) looked = key(r.a, r.b), pair = cache_.find(looked);
         if (pair == cache_.end()) continue;
         const double near = 1e-2 * std::min(setup.meshes[r.a]->size(), setup.meshes[r.b]->size());
         double closest = near;
@@ -511,10 +553,13 @@ class ContactSolver {
       }
     }
     // The impulses of this solve replace what its pairs had; other pairs (other
-    // islands) keep theirs until forget_old_contacts.
+    // islands) keep theirs until forget_old_contacts. A pair's entry is
+    // emptied, not erased, so that its storage serves the next step (an
+    // empty entry warm starts nothing, as a missing one).
     void remember(std::span<const PairHit> hits, BodyIndices world, const std::vector<Row>& rows,
                   const std::vector<Friction>& frictions, double dt) const {
-      for (const auto& h : hits) cache_.erase(key(world[h.a], world[h.b]));
+      for (const auto& h : hits)
+        if (const auto it = cache_.find(key(world[h.a], world[h.b])); it != cache_.end()) it->second.at.clear();
       if (!(dt > 0)) return;
       for (const auto& r : rows)
         if (r.lambda > 0) {
@@ -635,9 +680,13 @@ class ContactSolver {
     // with each other), the least-squares answer can be large; it is then
     // dropped for the pushing correction alone, and counted
     // (projections_refused).
+    // `a`: the velocity solve's Delassus matrix (direct), whose normal rows
+    // are these rows with the same arms: the projection's matrix, not built
+    // again.
     void project_positions(const Model& m, std::span<double> y, BodyIndices world, const std::vector<Row>& rows,
                            const Motions& motion, const std::vector<int>& body_of, const std::vector<char>& correct,
-                           const std::vector<char>& parting, const std::vector<char>& moves) const {
+                           const std::vector<char>& parting, const std::vector<char>& moves,
+                           Eigen::SparseMatrix<double>& a) const {
       const double tol = setup.settings.penetration_tolerance, settle = 0.25 * tol;
       // Frictionless pairs only: friction holds a body against the sideways
       // push a tilt gives, and projecting a pair with friction moved what its
@@ -665,7 +714,7 @@ class ContactSolver {
         std::vector<Friction> none;
         // Solved to a billionth of the tolerance; the sweeps cannot pull, so
         // they only finish a solve the direct method left unsolved (counted).
-        if (!direct(fix, none, pseudo, moves, 1e-9 * tol, bilateral))
+        if (!direct(fix, none, pseudo, moves, 1e-9 * tol, bilateral, &a))
           solve(fix, pseudo, 1e-6 * tol, counters.correction_cap_hits);
         return pseudo;
       };
@@ -694,11 +743,12 @@ class ContactSolver {
       // the solver's sweeps).
       Motions motion;
       std::vector<int> body_of;  // slot → body of the group
-      std::unordered_map<int, std::size_t> slot_of;
+      std::vector<std::size_t> slot_of(world.size(), std::numeric_limits<std::size_t>::max());  // body of the group → slot
       const auto slot = [&](int b) {
-        const auto [it, fresh] = slot_of.emplace(b, motion.size());
-        if (fresh) motion.push_back(Bodies::motion(m, y, static_cast<std::size_t>(b))), body_of.push_back(b);
-        return it->second;
+        std::size_t& s = slot_of[static_cast<std::size_t>(b)];
+        if (s == std::numeric_limits<std::size_t>::max())
+          s = motion.size(), motion.push_back(Bodies::motion(m, y, static_cast<std::size_t>(b))), body_of.push_back(b);
+        return s;
       };
       std::vector<Row> rows;
       std::vector<Friction> frictions;  // none unless a pair has μ > 0
@@ -744,7 +794,8 @@ class ContactSolver {
       const double converged = kVelocityTolerance * (1 + scale);
       const bool direct_solve = setup.settings.contact_solver == ContactSolverMethod::direct;
       const std::vector<char> moves = direct_solve ? moving(world, body_of) : std::vector<char>{};
-      if (direct_solve) direct(rows, frictions, motion, moves, converged);
+      Eigen::SparseMatrix<double> a;  // the direct solve's Delassus matrix, for its projection
+      if (direct_solve) direct(rows, frictions, motion, moves, converged, {}, &a);
       counters.add_residual(solve(rows, motion, converged, counters.sweep_cap_hits, frictions));
       // Sliding: friction on the rim of its disc and the contact still slipping
       // after the solve. (On the rim alone is not sliding: the corners of a face
@@ -772,7 +823,7 @@ class ContactSolver {
       for (std::size_t hi = 0; hi < hits.size(); ++hi)
         correct[hi] = hits[hi].sat.depth > 0.5 * tol && (resting_pair[hi] || !parting[hi]);
       for (std::size_t k = 0; k < motion.size(); ++k) Bodies::store(m, y, static_cast<std::size_t>(body_of[k]), motion[k]);
-      if (direct_solve) project_positions(m, y, world, rows, motion, body_of, correct, parting, moves);
+      if (direct_solve) project_positions(m, y, world, rows, motion, body_of, correct, parting, moves, a);
       else correct_positions(m, y, rows, motion, body_of, correct);
       friction_displacement(m, y, rows, frictions, motion, body_of, dt);
     }

@@ -4,9 +4,10 @@
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <optional>
-#include <span>
 #include <vector>
 
 namespace gacompare::core::contact {
@@ -22,18 +23,45 @@ class FreeSystem {
   FreeSystem(const Eigen::SparseMatrix<double>& a, const std::vector<Eigen::Index>& rows,
              const std::vector<Eigen::Index>& free, const Eigen::VectorXd& delta, int dense_up_to)
       : n_(static_cast<Eigen::Index>(rows.size())), dense_(n_ <= dense_up_to) {
-    std::vector<Eigen::Triplet<double>> t;
-    for (Eigen::Index k = 0; k < n_; ++k)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(a, rows[static_cast<std::size_t>(k)]); it; ++it)
-        if (const Eigen::Index j = free[static_cast<std::size_t>(it.row())]; j >= 0) t.emplace_back(j, k, it.value());
+    // A_FF and A_FF + δ, column by column straight from A's storage (no
+    // triplets to sort): A is compressed with each column's rows in order,
+    // and `free` keeps their order, so each column of A_FF comes out sorted.
+    // The regularised copy holds every diagonal entry (0 + δ where A_FF has
+    // none, as coeffRef would insert).
+    Eigen::Index nnz = 0;
+    for (const Eigen::Index c : rows) nnz += a.outerIndexPtr()[c + 1] - a.outerIndexPtr()[c];
     a_ff_.resize(n_, n_);
-    a_ff_.setFromTriplets(t.begin(), t.end());
-    Eigen::SparseMatrix<double> reg = a_ff_;
-    for (Eigen::Index k = 0; k < n_; ++k) reg.coeffRef(k, k) += delta[rows[static_cast<std::size_t>(k)]];
+    a_ff_.resizeNonZeros(nnz);
+    Workspace& w = workspace();
+    w.outer.resize(static_cast<std::size_t>(n_) + 1), w.inner.clear(), w.values.clear();
+    w.inner.reserve(static_cast<std::size_t>(nnz + n_)), w.values.reserve(static_cast<std::size_t>(nnz + n_));
+    // (Built in vectors, then copied into w.reg: Eigen reads a SparseMatrix, and
+    // converting a Map to one on every factorisation went element by element.)
+    Eigen::Index at = 0;
+    for (Eigen::Index k = 0; k < n_; ++k) {
+      const Eigen::Index c = rows[static_cast<std::size_t>(k)];
+      const double dk = delta[c];
+      bool diagonal = false;
+      a_ff_.outerIndexPtr()[k] = static_cast<int>(at);
+      w.outer[static_cast<std::size_t>(k)] = static_cast<int>(w.inner.size());
+      for (Eigen::SparseMatrix<double>::InnerIterator it(a, c); it; ++it) {
+        const Eigen::Index j = free[static_cast<std::size_t>(it.row())];
+        if (j < 0) continue;
+        a_ff_.innerIndexPtr()[at] = static_cast<int>(j), a_ff_.valuePtr()[at] = it.value(), ++at;
+        if (j > k && !diagonal) w.inner.push_back(static_cast<int>(k)), w.values.push_back(0.0 + dk), diagonal = true;
+        w.inner.push_back(static_cast<int>(j)), w.values.push_back(j == k ? it.value() + dk : it.value());
+        diagonal |= j == k;
+      }
+      if (!diagonal) w.inner.push_back(static_cast<int>(k)), w.values.push_back(0.0 + dk);
+    }
+    a_ff_.outerIndexPtr()[n_] = static_cast<int>(at);
+    a_ff_.resizeNonZeros(at);
+    w.outer[static_cast<std::size_t>(n_)] = static_cast<int>(w.inner.size());
     if (dense_) {
-      dense_ldlt_.compute(Eigen::MatrixXd(reg));
+      dense_ldlt_.compute(Eigen::MatrixXd(Eigen::Map<const Eigen::SparseMatrix<double>>(
+          n_, n_, static_cast<Eigen::Index>(w.inner.size()), w.outer.data(), w.inner.data(), w.values.data())));
     } else {
-      sparse().factorise(reg);
+      factor_ = &factor_of(w);
     }
   }
 
@@ -44,48 +72,91 @@ class FreeSystem {
   // A_FF's range; stops when it no longer gains (the rest lies in the null
   // space and moves nothing).
   Eigen::VectorXd refine(const Eigen::VectorXd& r, Eigen::VectorXd x, double tolerance) const {
-    double last = (r - a_ff_ * x).cwiseAbs().maxCoeff();
+    Eigen::VectorXd residual = r - a_ff_ * x;  // of x, kept for the next round
+    double last = residual.cwiseAbs().maxCoeff();
     for (int k = 0; k < 4 && last > tolerance; ++k) {
-      const Eigen::VectorXd y = x + once(r - a_ff_ * x);
-      const double now = (r - a_ff_ * y).cwiseAbs().maxCoeff();
+      const Eigen::VectorXd y = x + once(residual);
+      Eigen::VectorXd next = r - a_ff_ * y;
+      const double now = next.cwiseAbs().maxCoeff();
       if (!(now < 0.5 * last)) break;
-      x = y, last = now;
+      x = y, last = now, residual.swap(next);
     }
     return x;
   }
 
  private:
+  // The sparse factorisations, kept from one factorisation to the next on
+  // this thread, eight of them: the ordering (AMD) and elimination tree
+  // depend only on the free rows' pattern, and finding them cost as much as
+  // the numeric factorisation of a 20-cube column; and a step's velocity
+  // solve and its position projection usually factorise the same matrix (the
+  // same rows, all free) one after the other. So a pattern met again skips
+  // the analysis, and the same pattern with the same values skips the
+  // factorisation too (the factor is then the very one a fresh factorisation
+  // gives: the same answers, bit for bit). The velocity solve and the
+  // projection alternate, with different patterns when some rows are on a
+  // bound: one remembered pattern was analysed again at every step (a
+  // 10-layer wall pyramid spent a quarter of its run in AMD). As a sparse
+  // direct solver's symbolic analysis is reused across numeric
+  // factorisations of one pattern (Davis, "Direct Methods for Sparse Linear
+  // Systems", ch. 4). One FreeSystem is in use at a time on a thread
+  // (solve_blcp's latest), and the entry it reads is the newest, never the
+  // one replaced.
+  struct Workspace {
+    std::vector<int> outer, inner;  // the regularised A_FF being built
+    std::vector<double> values;
+    Eigen::SparseMatrix<double> reg;  // the same, when it is factorised
+  };
+  struct SparseFactor {
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+    std::vector<int> outer, inner;  // the pattern analysed
+    std::vector<double> values;     // the values factorised (empty: none yet)
+    std::uint64_t used = 0;         // when last used (the least recent is replaced)
+  };
+  static constexpr std::size_t kPatterns = 8;
+  struct Cache {
+    std::array<SparseFactor, kPatterns> entries;
+    std::uint64_t clock = 0;
+  };
+  static Workspace& workspace() {
+    thread_local Workspace w;
+    return w;
+  }
+  static const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& factor_of(Workspace& w) {
+    thread_local Cache cache;
+    SparseFactor* hit = nullptr;
+    for (SparseFactor& e : cache.entries)
+      if (e.outer == w.outer && e.inner == w.inner) hit = &e;
+    const auto n = static_cast<Eigen::Index>(w.outer.size()) - 1;
+    const auto matrix = [&]() -> const Eigen::SparseMatrix<double>& {
+      w.reg.resize(n, n);
+      w.reg.resizeNonZeros(static_cast<Eigen::Index>(w.inner.size()));
+      std::ranges::copy(w.outer, w.reg.outerIndexPtr());
+      std::ranges::copy(w.inner, w.reg.innerIndexPtr());
+      std::ranges::copy(w.values, w.reg.valuePtr());
+      return w.reg;
+    };
+    if (!hit) {
+      hit = &*std::ranges::min_element(cache.entries, {}, &SparseFactor::used);
+      hit->ldlt.analyzePattern(matrix());
+      hit->outer = w.outer, hit->inner = w.inner, hit->values.clear();
+    }
+    if (hit->values != w.values) {
+      hit->ldlt.factorize(matrix());
+      hit->values = w.values;
+    }
+    hit->used = ++cache.clock;
+    return hit->ldlt;
+  }
+
   Eigen::VectorXd once(const Eigen::VectorXd& r) const {
-    return dense_ ? Eigen::VectorXd(dense_ldlt_.solve(r)) : Eigen::VectorXd(sparse().ldlt.solve(r));
+    return dense_ ? Eigen::VectorXd(dense_ldlt_.solve(r)) : Eigen::VectorXd(factor_->solve(r));
   }
   Eigen::Index n_;
   bool dense_;
   Eigen::SparseMatrix<double> a_ff_;
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
-
-  // The sparse factorisation, kept from one factorisation to the next on
-  // this thread: its ordering (AMD) and elimination tree depend only on the
-  // free rows' pattern, which the next factorisation (the next active set,
-  // the next step's solve of the same stack) usually shares, and finding
-  // them cost as much as the numeric factorisation of a 20-cube column.
-  // One FreeSystem is in use at a time on a thread (solve_blcp's latest).
-  struct SparseFactor {
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-    std::vector<int> outer, inner;  // the pattern analysed
-    void factorise(const Eigen::SparseMatrix<double>& m) {
-      const std::span<const int> o(m.outerIndexPtr(), static_cast<std::size_t>(m.outerSize()) + 1);
-      const std::span<const int> in(m.innerIndexPtr(), static_cast<std::size_t>(m.nonZeros()));
-      if (!std::ranges::equal(o, outer) || !std::ranges::equal(in, inner)) {
-        ldlt.analyzePattern(m);
-        outer.assign(o.begin(), o.end()), inner.assign(in.begin(), in.end());
-      }
-      ldlt.factorize(m);
-    }
-  };
-  static SparseFactor& sparse() {
-    thread_local SparseFactor factor;
-    return factor;
-  }
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>* factor_ = nullptr;
 };
 
 double tolerance_of(const Blcp& p, const BlcpSettings& s) {
