@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <vector>
 
@@ -141,7 +142,11 @@ class FreeSystem {
       hit->ldlt.analyzePattern(matrix());
       hit->outer = w.outer, hit->inner = w.inner, hit->values.clear();
     }
-    if (hit->values != w.values) {
+    // Bit for bit (−0.0 is not 0.0, and a NaN never matches), so a reused
+    // factor is exactly the one a fresh factorisation would give.
+    const bool same = !hit->values.empty() && hit->values.size() == w.values.size() &&
+                      std::memcmp(hit->values.data(), w.values.data(), w.values.size() * sizeof(double)) == 0;
+    if (!same) {
       hit->ldlt.factorize(matrix());
       hit->values = w.values;
     }
