@@ -295,8 +295,7 @@ StackVerdict StackCase::evaluate(const Run& run) const {
   };
   if (run.error) note(INFINITY, 1, cat("the run stopped: ", *run.error));
   for (const char* cap : {"response_sweep_cap_hits", "correction_sweep_cap_hits"}) {
-    const auto it = run.counters.find(cap);
-    const double hits = it == run.counters.end() ? 0.0 : static_cast<double>(it->second);
+    const auto hits = static_cast<double>(run.count(cap));
     note(hits, 0.5, cat(cap, " ", std::to_string(static_cast<long>(hits))));
   }
   if (run.samples.empty()) note(INFINITY, 1, "no samples");

@@ -25,17 +25,12 @@ std::vector<double> seconds_each_repeat(const BackendResult& b, Stage s) {
   return v;
 }
 
-std::uint64_t counter(const core::Run& run, const char* name) {
-  const auto it = run.counters.find(name);
-  return it == run.counters.end() ? 0 : it->second;
-}
-
 // What one unit of a stage's work is, and how many each run did (summary.hpp).
 void set_work(StageTimes& st, const core::Run& num, const core::Run& den) {
   const auto from_counter = [&](const char* unit, const char* name) {
     st.unit = unit;
-    st.numerator_work = counter(num, name);
-    st.denominator_work = counter(den, name);
+    st.numerator_work = num.count(name);
+    st.denominator_work = den.count(name);
   };
   switch (st.stage) {
     case Stage::narrowphase: from_counter("narrowphase pair", "narrowphase_pairs"); break;

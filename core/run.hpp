@@ -5,6 +5,7 @@
 #include "core/model/scene.hpp"
 #include "core/stage.hpp"
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -44,6 +45,12 @@ struct Run {
   std::map<std::string, double> metrics;  // measured values that are not counts (largest CG residual)
   double wall_seconds = 0;          // whole run, start to last sample
   std::optional<std::string> error; // set when the run stopped early; samples so far are kept
+
+  // A counter's value, 0 where the run has none (a stage it never entered).
+  std::uint64_t count(const std::string& name) const {
+    const auto it = counters.find(name);
+    return it == counters.end() ? 0 : it->second;
+  }
 };
 
 }  // namespace gacompare::core

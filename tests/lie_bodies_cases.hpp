@@ -65,6 +65,12 @@ inline double angle_between(const core::BodySample& a, const core::BodySample& b
   const Eigen::Quaterniond qb(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]);
   return 2 * std::asin(std::min(1.0, (qa.conjugate() * qb).vec().norm()));
 }
+// The largest distance of a stored rotation from the group over the run's samples.
+inline double largest_drift(const core::Run& run) {
+  double worst = 0;
+  for (const auto& s : run.samples) worst = std::max(worst, s.rotation_drift);
+  return worst;
+}
 template <class Backend>
 core::Run run_or_fail(const core::Scene& scene) {
   core::Run run = core::simulate<Backend>(scene);
@@ -87,24 +93,19 @@ TYPED_TEST_SUITE_P(LieBodiesCases);
 // so the bound tells the two apart.
 TYPED_TEST_P(LieBodiesCases, RotationStaysNormalisedWithoutRenormalising) {
   using B = typename TypeParam::Backend;
-  const auto drift = [](const core::Run& run) {
-    double worst = 0;
-    for (const auto& s : run.samples) worst = std::max(worst, s.rotation_drift);
-    return worst;
-  };
   for (const auto& [method, compositions] : {std::pair{"rkmk4", 1}, {"crouch_grossman4", 5}}) {
     const core::Run run = run_or_fail<B>(lie_scene(TypeParam::options, 10, 1, fixed_step(method, 1e-3)));
-    std::printf("%s %s: drift after 1e4 steps %.2e\n", TypeParam::Group::name.data(), method, drift(run));
-    EXPECT_LE(drift(run), 1e-13 * std::sqrt(compositions)) << method;
+    std::printf("%s %s: drift after 1e4 steps %.2e\n", TypeParam::Group::name.data(), method, largest_drift(run));
+    EXPECT_LE(largest_drift(run), 1e-13 * std::sqrt(compositions)) << method;
   }
   // rkmk45 at 1e-10 takes ~1,200 steps of one composition each over the same 10 s.
   const core::Run pair = run_or_fail<B>(lie_scene(TypeParam::options, 10, 1, adaptive("rkmk45", 1e-10)));
   std::printf("%s rkmk45: drift after %llu steps %.2e\n", TypeParam::Group::name.data(),
-              static_cast<unsigned long long>(pair.solver.steps_accepted), drift(pair));
-  EXPECT_LE(drift(pair), 1e-13);
+              static_cast<unsigned long long>(pair.solver.steps_accepted), largest_drift(pair));
+  EXPECT_LE(largest_drift(pair), 1e-13);
   const core::Run flat = run_or_fail<B>(lie_scene(TypeParam::options, 10, 1, fixed_step("rk4", 1e-3)));
-  std::printf("%s rk4 (flat): drift %.2e\n", TypeParam::Group::name.data(), drift(flat));
-  EXPECT_GT(drift(flat), 1e-12);
+  std::printf("%s rk4 (flat): drift %.2e\n", TypeParam::Group::name.data(), largest_drift(flat));
+  EXPECT_GT(largest_drift(flat), 1e-12);
 }
 
 // The scene's step is the module's: 100 steps of 10 ms of rkmk4 and of
@@ -292,15 +293,6 @@ inline std::pair<double, double> apart(const core::Run& a, const core::Run& b) {
   }
   return {dx, angle};
 }
-inline double largest_drift(const core::Run& run) {
-  double worst = 0;
-  for (const auto& s : run.samples) worst = std::max(worst, s.rotation_drift);
-  return worst;
-}
-inline std::uint64_t count_of(const core::Run& run, const char* name) {
-  const auto it = run.counters.find(name);
-  return it == run.counters.end() ? 0 : it->second;
-}
 
 // The Lie-group methods take the collisions effect: the islands stepped
 // alone and the time-of-impact trials integrate through the backend's
@@ -336,8 +328,8 @@ TYPED_TEST_P(LieBodiesCases, CollisionsStepOnTheGroup) {
   const core::Run flat[2] = {run_or_fail<B>(lie_drop(TypeParam::options, 1, fixed_step("rk4", h))),
                              run_or_fail<B>(lie_drop(TypeParam::options, 1, fixed_step("rk4", h / 2)))};
   std::printf("%s rk4: drift %.2e, %llu contacts, %llu impact searches\n", name, largest_drift(flat[0]),
-              static_cast<unsigned long long>(count_of(flat[0], "contacts")),
-              static_cast<unsigned long long>(count_of(flat[0], "impact_searches")));
+              static_cast<unsigned long long>(flat[0].count("contacts")),
+              static_cast<unsigned long long>(flat[0].count("impact_searches")));
   EXPECT_GT(largest_drift(flat[0]), 1e-13);
   for (const char* method : {"rkmk4", "crouch_grossman4", "rkmk45"}) {
     const bool pair = std::string(method) == "rkmk45";
@@ -349,15 +341,15 @@ TYPED_TEST_P(LieBodiesCases, CollisionsStepOnTheGroup) {
       std::printf("%s %s (h/%d): from rk4 %.2e m, %.2e rad; drift %.2e; %llu contacts, %llu impact searches, %llu "
                   "islands alone, %llu bodies integrated by trials, %llu steps\n",
                   name, method, 1 << k, dx[k], angle[k], largest_drift(run),
-                  static_cast<unsigned long long>(count_of(run, "contacts")),
-                  static_cast<unsigned long long>(count_of(run, "impact_searches")),
-                  static_cast<unsigned long long>(count_of(run, "islands_stepped_alone")),
-                  static_cast<unsigned long long>(count_of(run, "impact_bodies_integrated")),
+                  static_cast<unsigned long long>(run.count("contacts")),
+                  static_cast<unsigned long long>(run.count("impact_searches")),
+                  static_cast<unsigned long long>(run.count("islands_stepped_alone")),
+                  static_cast<unsigned long long>(run.count("impact_bodies_integrated")),
                   static_cast<unsigned long long>(run.solver.steps_accepted));
-      EXPECT_GT(count_of(run, "contacts"), 0u) << method;
-      EXPECT_GT(count_of(run, "impact_searches"), 0u) << method;
-      EXPECT_GT(count_of(run, "islands_stepped_alone"), 0u) << method;
-      EXPECT_GT(count_of(run, "impact_bodies_integrated"), 0u) << method;
+      EXPECT_GT(run.count("contacts"), 0u) << method;
+      EXPECT_GT(run.count("impact_searches"), 0u) << method;
+      EXPECT_GT(run.count("islands_stepped_alone"), 0u) << method;
+      EXPECT_GT(run.count("impact_bodies_integrated"), 0u) << method;
       EXPECT_LE(largest_drift(run), 1e-13) << method;
     }
     std::printf("%s %s: order of the difference %.2f (angle), %.2f (centre)\n", name, method,
@@ -382,18 +374,18 @@ TYPED_TEST_P(LieBodiesCases, SleepingBodiesStayWhereTheySleep) {
   const core::Run run = run_or_fail<B>(lie_drop(TypeParam::options, 2.5, fixed_step("rkmk4", 1e-3), true));
   const auto [dx, angle] = apart(run, flat);
   std::printf("%s rkmk4 asleep: %llu islands slept, %llu body-steps asleep; from rk4 %.2e m, %.2e rad\n",
-              TypeParam::Group::name.data(), static_cast<unsigned long long>(count_of(run, "sleep_islands")),
-              static_cast<unsigned long long>(count_of(run, "sleeping_body_steps")), dx, angle);
-  ASSERT_EQ(count_of(run, "sleep_islands"), 1u);
-  ASSERT_EQ(count_of(flat, "sleep_islands"), 1u);
-  EXPECT_EQ(count_of(run, "sleeping_body_steps"), count_of(flat, "sleeping_body_steps"));
+              TypeParam::Group::name.data(), static_cast<unsigned long long>(run.count("sleep_islands")),
+              static_cast<unsigned long long>(run.count("sleeping_body_steps")), dx, angle);
+  ASSERT_EQ(run.count("sleep_islands"), 1u);
+  ASSERT_EQ(flat.count("sleep_islands"), 1u);
+  EXPECT_EQ(run.count("sleeping_body_steps"), flat.count("sleeping_body_steps"));
   // Its gravity terms skipped as rk4 skips them: both evaluate the forces 4
   // times a step, at the same steps, none on the box while it sleeps.
   EXPECT_EQ(run.solver.derivative_evaluations, flat.solver.derivative_evaluations);
-  EXPECT_EQ(count_of(run, "effect_gravity_terms"), count_of(flat, "effect_gravity_terms"));
-  EXPECT_LT(count_of(run, "effect_gravity_terms"), run.solver.derivative_evaluations / 2);
+  EXPECT_EQ(run.count("effect_gravity_terms"), flat.count("effect_gravity_terms"));
+  EXPECT_LT(run.count("effect_gravity_terms"), run.solver.derivative_evaluations / 2);
   // The samples taken asleep: the last sleeping_body_steps collision steps of 1 ms.
-  const auto asleep = static_cast<std::size_t>(count_of(run, "sleeping_body_steps") / 10);
+  const auto asleep = static_cast<std::size_t>(run.count("sleeping_body_steps") / 10);
   ASSERT_GE(asleep, 2u);
   const core::BodySample& last = run.samples.back().bodies[1];
   for (std::size_t k = run.samples.size() - asleep; k < run.samples.size(); ++k) {

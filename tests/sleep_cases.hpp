@@ -35,11 +35,6 @@ inline core::Scene with_sleep(core::Scene s) {
   return s;
 }
 
-inline std::uint64_t counter(const core::Run& r, const char* name) {
-  const auto it = r.counters.find(name);
-  return it == r.counters.end() ? 0 : it->second;
-}
-
 // Body by body, the final positions of two runs of one scene.
 inline double largest_offset(const core::Run& a, const core::Run& b) {
   double worst = 0;
@@ -64,14 +59,14 @@ TYPED_TEST_P(SleepCases, ASettledColumnSleepsWhereTheAwakeColumnRests) {
   EXPECT_TRUE(v.pass) << v.first_failure;
   // The five cubes sleep as one island, once, and stay asleep: the drops
   // settle within the first second (kStackSettle), so at least 1.5 s asleep.
-  EXPECT_EQ(counter(asleep, "sleep_islands"), 1u);
-  EXPECT_EQ(counter(asleep, "sleep_woken_by_touch") + counter(asleep, "sleep_woken_by_force"), 0u);
-  EXPECT_GE(counter(asleep, "sleeping_body_steps"), 5u * 1500u);
+  EXPECT_EQ(asleep.count("sleep_islands"), 1u);
+  EXPECT_EQ(asleep.count("sleep_woken_by_touch") + asleep.count("sleep_woken_by_force"), 0u);
+  EXPECT_GE(asleep.count("sleeping_body_steps"), 5u * 1500u);
   for (const auto& b : asleep.samples.back().bodies) EXPECT_EQ(b.velocity.norm() + b.angular_velocity.norm(), 0.0);
   EXPECT_LE(largest_offset(asleep, awake), core::kStackDrift);
   // What it saves: no gravity term and no narrowphase pair for a sleeping body.
-  EXPECT_LT(counter(asleep, "effect_gravity_terms"), counter(awake, "effect_gravity_terms") / 2);
-  EXPECT_LT(counter(asleep, "narrowphase_pairs"), counter(awake, "narrowphase_pairs") / 2);
+  EXPECT_LT(asleep.count("effect_gravity_terms"), awake.count("effect_gravity_terms") / 2);
+  EXPECT_LT(asleep.count("narrowphase_pairs"), awake.count("narrowphase_pairs") / 2);
 }
 
 TYPED_TEST_P(SleepCases, ACubeLetGoAboveTheSleepingColumnWakesIt) {
@@ -87,10 +82,10 @@ TYPED_TEST_P(SleepCases, ACubeLetGoAboveTheSleepingColumnWakesIt) {
   const core::Run awake = core::simulate<TypeParam>(c.scene);
   const core::Run asleep = core::simulate<TypeParam>(with_sleep(c.scene));
   ASSERT_FALSE(awake.error || asleep.error);
-  EXPECT_GE(counter(asleep, "sleep_woken_by_touch"), 1u);
-  EXPECT_GE(counter(asleep, "sleep_redetections"), 1u);
+  EXPECT_GE(asleep.count("sleep_woken_by_touch"), 1u);
+  EXPECT_GE(asleep.count("sleep_redetections"), 1u);
   // Asleep before the drop (the column), and again after it (all six).
-  EXPECT_GE(counter(asleep, "sleep_islands"), 2u);
+  EXPECT_GE(asleep.count("sleep_islands"), 2u);
   EXPECT_EQ(asleep.samples.back().bodies.back().velocity.norm(), 0.0);
   EXPECT_LE(largest_offset(asleep, awake), core::kStackDrift);
 }
@@ -105,8 +100,8 @@ TYPED_TEST_P(SleepCases, AnAppliedForceWakesTheBodyItPushes) {
   const core::Run awake = core::simulate<TypeParam>(c.scene);
   const core::Run asleep = core::simulate<TypeParam>(with_sleep(c.scene));
   ASSERT_FALSE(awake.error || asleep.error);
-  EXPECT_EQ(counter(asleep, "sleep_woken_by_force"), 1u);
-  EXPECT_GE(counter(asleep, "sleep_islands"), 2u);
+  EXPECT_EQ(asleep.count("sleep_woken_by_force"), 1u);
+  EXPECT_GE(asleep.count("sleep_islands"), 2u);
   EXPECT_LE(largest_offset(asleep, awake), core::kStackDrift);
   // The lift happened in the sleeping run too: the top cube was above its rest at some sample.
   double highest = -INFINITY;

@@ -128,7 +128,8 @@ struct Simulation {
           // A Lie-group method steps through its group step and never calls
           // f: the mask goes to the step for this collision step (it counts
           // the skipped terms alike), then the world's plain step is back.
-          set_group_step_of<Simulation>(solver, m, std::span<const char>(state.sleep.asleep));
+          set_group_step_of<Simulation>(solver, m, std::span<const char>(state.sleep.asleep),
+                                        static_cast<std::uint64_t>(state.sleep.sleeping), pushes_asleep);
           solver.advance(f, t, t1, y, profile, after);
           set_group_step_of<Simulation>(solver, m);
         } else {
@@ -193,21 +194,19 @@ struct Simulation {
   // of bodies only (lie_group_refusal keeps particles out), each body by its
   // backend. Its forces are evaluated inside the step, timed as `integrate`.
   // `asleep` as for derivative: the sleeping bodies stay where they are, and
-  // their terms are counted as skipped at each of the step's evaluations.
+  // their terms (`sleeping` bodies, `pushes_asleep` applied forces, counted
+  // once per collision step by the caller) are counted as skipped at each of
+  // the step's evaluations.
   static void group_step(const Model& m, SolverMethod method, double t, double h, std::span<const double> y,
-                         std::span<double> out, std::span<double> err, std::span<const char> asleep = {}) {
+                         std::span<double> out, std::span<double> err, std::span<const char> asleep = {},
+                         std::uint64_t sleeping = 0, std::uint64_t pushes_asleep = 0) {
     if (m.offset > 0)
       throw input_error("solver.method '" + std::string(to_string(method)) +
                         "' steps rigid bodies on their rotation group and cannot integrate particles");
     const auto stages = static_cast<std::uint64_t>(lie::body_step_stages(group_method(method)));
     m.force_evaluations += stages;
-    if (!asleep.empty()) {
-      std::uint64_t bodies = 0, pushes = 0;
-      for (const char a : asleep) bodies += a != 0;
-      for (const auto& push : m.compiled->effects.pushes) pushes += asleep[push.body] != 0;
-      m.asleep_body_evaluations += stages * bodies;
-      m.asleep_push_evaluations += stages * pushes;
-    }
+    m.asleep_body_evaluations += stages * sleeping;
+    m.asleep_push_evaluations += stages * pushes_asleep;
     Bodies::group_step(m.bodies, method, t, h, y, out, err, asleep);
   }
   static bool after_step(const Model& m, std::vector<double>& y, Profile& profile) {
