@@ -3,7 +3,8 @@
 # every test, then the regression check of the bundled scenes against their
 # stored baselines (data/reference). Extra arguments go to ctest, e.g. `-L algebra`.
 #
-# With --ci first (what CI runs, .ci/run): then also a 60 s fuzz run of the
+# With --ci first (what CI runs, .ci/run): then also the determinism check
+# against a clang build (the same state hashes as gcc's build gives), a 60 s fuzz run of the
 # scene loader, the OBJ reader and the readers of results, baselines and sweep
 # cells (scripts/fuzz.sh) and the whole suite again
 # built with AddressSanitizer + UBSan (the asan preset).
@@ -20,6 +21,9 @@ bash scripts/build.sh ci
 GACOMPARE_REQUIRE_SLURM=$ci ctest --preset ci -j2 "$@"
 build/ci/compare/gacompare check data/scenes/*.json --baseline data/reference --quiet
 if [ "$ci" = 1 ]; then
+  bash scripts/build.sh clang
+  bash tests/scripts/determinism_test.sh build/ci/compare/gacompare-state-hash bench/scale/box_scene.py \
+    data/scenes/mixed_pile.json build/clang/compare/gacompare-state-hash
   bash scripts/fuzz.sh --seconds 60
   bash scripts/build.sh asan
   # Under the sanitizers the long physics runs (10 s stacks and columns of the

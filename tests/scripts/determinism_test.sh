@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The determinism check: the same answer to the bit on 1 and 2 threads, and
+# (given a second build's tool) from another compiler. The 1,000-body box of
+# the scale series (bench/scale/box_scene.py --bodies 1000 --seed 1, 0.3 s:
+# some 2,500 responses and 2,200 time-of-impact searches) and the bundled
+# mixed pile (cubes, spheres and a plate settling with friction, 1 s), each through
+# traditional, cga and pga; each run's state
+# hash (core/run.hpp: every sample's state and every counter) printed by
+# gacompare-state-hash.
+#   determinism_test.sh TOOL BOX_SCENE_PY PILE_SCENE [OTHER_TOOL]
+# Passes only when every run printed a hash and every hash is equal across
+# the settings; prints the hashes either way.
+set -euo pipefail
+tool="$1" box_py="$2" pile="$3" other="${4:-}"
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+python3 "$box_py" --bodies 1000 --seed 1 --duration 0.3 --every 0.1 >"$dir/box_1000.json"
+scenes=("$dir/box_1000.json" "$pile")
+backends=traditional,cga,pga
+"$tool" "${scenes[@]}" --backends "$backends" --threads 1 >"$dir/one"
+"$tool" "${scenes[@]}" --backends "$backends" --threads 2 >"$dir/two"
+settings=("two threads:$dir/two")
+if [ -n "$other" ]; then
+  "$other" "${scenes[@]}" --backends "$backends" --threads 1 >"$dir/other"
+  settings+=("the other compiler's build, one thread:$dir/other")
+fi
+echo "one thread:"
+cat "$dir/one"
+expected=$(( ${#scenes[@]} * 3 ))
+if [ "$(wc -l <"$dir/one")" -ne "$expected" ]; then
+  echo "FAIL: expected $expected hashes on one thread" >&2
+  exit 1
+fi
+status=0
+for s in "${settings[@]}"; do
+  name="${s%%:*}" file="${s#*:}"
+  if cmp -s "$dir/one" "$file"; then
+    echo "$name: the same $expected hashes"
+  else
+    echo "FAIL: $name gives other answers:" >&2
+    diff "$dir/one" "$file" >&2 || true
+    status=1
+  fi
+done
+exit $status
