@@ -15,6 +15,8 @@
 namespace gacompare::core {
 namespace {
 
+thread_local bool t_in_item = false;  // detail::in_item()
+
 // One loop at a time: the stages call for_each_index from the run's own
 // thread, never from inside an item. A chunk is claimed by a compare-and-swap
 // on one word holding the loop's generation and its next chunk, so a worker
@@ -95,12 +97,14 @@ class Pool {
       if (!next_.compare_exchange_weak(cur, cur + 1)) continue;  // cur now holds the newer word
       const std::size_t c = cur & 0xffffffffu;
       const std::size_t begin = c * loop.grain, end = std::min(loop.n, begin + loop.grain);
+      t_in_item = true;
       try {
         loop.call(loop.context, begin, end);
       } catch (...) {
         std::lock_guard lock(mutex_);
         if (!error_) error_ = std::current_exception();
       }
+      t_in_item = false;
       if (done_.fetch_add(1) + 1 == loop.chunks) {
         std::lock_guard lock(mutex_);  // so a caller about to sleep cannot miss it
         finished_.notify_all();
@@ -142,6 +146,8 @@ void set_threads(int n) {
 }
 
 int threads() { return g_threads; }
+
+bool detail::in_item() { return t_in_item; }
 
 void detail::run_chunks(std::size_t n, std::size_t grain, void* context,
                         void (*call)(void*, std::size_t, std::size_t)) {

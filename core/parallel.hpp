@@ -28,12 +28,16 @@ int threads();
 namespace detail {
 // Runs call(context, begin, end) over [0, n) in chunks of `grain` on the pool.
 void run_chunks(std::size_t n, std::size_t grain, void* context, void (*call)(void*, std::size_t, std::size_t));
+// Whether this thread is running an item of a loop: a loop inside an item (a
+// body's forces within a block of bodies integrated on one thread) then runs
+// on that thread alone, since the pool runs one loop at a time.
+bool in_item();
 }  // namespace detail
 
 // f(k) for every k in [0, n); f must write only what item k owns.
 template <class F>
 void for_each_index(std::size_t n, F&& f, std::size_t grain = 32) {
-  if (threads() == 1 || n < 2 * grain) {
+  if (threads() == 1 || n < 2 * grain || detail::in_item()) {
     for (std::size_t k = 0; k < n; ++k) f(k);
     return;
   }

@@ -144,6 +144,16 @@ void OdeSolver::interpolate(double t, std::vector<double>& y) {
   }
 }
 
+void OdeSolver::add_steps(const SolverStats& before, const SolverStats& after) {
+  stats_.steps_accepted += after.steps_accepted - before.steps_accepted;
+  stats_.steps_rejected += after.steps_rejected - before.steps_rejected;
+  stats_.derivative_evaluations += after.derivative_evaluations - before.derivative_evaluations;
+  if (after.steps_accepted > before.steps_accepted) {
+    stats_.min_step = std::min(stats_.min_step, after.min_step);
+    stats_.max_step = std::max(stats_.max_step, after.max_step);
+  }
+}
+
 double OdeSolver::fixed_steps(double t, double t_end, const std::vector<double>& y) const {
   const double steps = std::max(1.0, std::ceil((t_end - t) / spec_.dt * (1 - 1e-12)));
   // Counted before they are taken: a count past 2^64 (dt 1e-300) would

@@ -134,6 +134,14 @@ class OdeSolver {
                                          std::span<double>)>;
   void set_group_step(GroupStepFn step) { group_step_ = std::move(step); }
   SolverMethod method() const { return spec_.method; }
+  const SolverSpec& spec() const { return spec_; }
+  // For a fixed-step method whose steps other solvers of the same spec take
+  // on parts of the state (the world's bodies integrated in blocks,
+  // core/dynamics/simulation.hpp): the budget check this solver's own
+  // advance from t to t_end would make (it stops the run the same way), and
+  // then the steps one of those solvers took, from its stats before and after.
+  void check_fixed_budget(double t, double t_end, const std::vector<double>& y) const { fixed_steps(t, t_end, y); }
+  void add_steps(const SolverStats& before, const SolverStats& after);
 
  private:
   template <class F> void eval(F& f, double t, std::span<const double> y, std::span<double> dy);

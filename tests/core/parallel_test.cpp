@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace gacompare::core {
@@ -43,6 +45,34 @@ TEST_F(Parallel, AnItemsExceptionReachesTheCaller) {
   std::vector<int> hits(100, 0);
   for_each_index(hits.size(), [&](std::size_t k) { hits[k] = 1; }, 4);
   for (int h : hits) EXPECT_EQ(h, 1);
+}
+
+// A block of bodies integrated on one thread evaluates its forces through a
+// loop of its own: that loop runs on the item's thread, every index once,
+// and the pool takes the next outer loop as before.
+TEST_F(Parallel, ALoopInsideAnItemRunsOnThatThread) {
+  set_threads(2);
+  constexpr std::size_t outer = 4, inner = 1000;
+  std::vector<int> hits(outer * inner, 0);
+  std::vector<char> same_thread(outer * inner, 0);
+  for (int round = 0; round < 50; ++round) {
+    std::fill(hits.begin(), hits.end(), 0);
+    for_each_index(
+        outer,
+        [&](std::size_t k) {
+          const auto me = std::this_thread::get_id();
+          for_each_index(inner, [&](std::size_t i) {
+            ++hits[k * inner + i];
+            same_thread[k * inner + i] = std::this_thread::get_id() == me;
+          });
+        },
+        1);
+    for (std::size_t j = 0; j < hits.size(); ++j) ASSERT_EQ(hits[j], 1) << "round " << round << ", item " << j;
+    for (std::size_t j = 0; j < hits.size(); ++j) ASSERT_TRUE(same_thread[j]) << "round " << round << ", item " << j;
+  }
+  std::vector<int> after(100, 0);
+  for_each_index(after.size(), [&](std::size_t k) { after[k] = 1; }, 4);
+  for (int h : after) EXPECT_EQ(h, 1);
 }
 
 TEST_F(Parallel, ThreadCountsOutsideOneTo256AreRefused) {
