@@ -125,7 +125,7 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     put(dydt, at.rot, -0.5 * (r * omega_body));  // eq. 35
     put(dydt, at.p, force);
     put(dydt, at.l, torque);
-  });
+  }, core::kGrainLight);
 }
 
 bool RigidBodies::renormalise(const Model& m, std::span<double> y) {

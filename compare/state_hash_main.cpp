@@ -40,13 +40,17 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   std::string backends = "traditional,cga";
   int threads = 1;
+  bool fine = false;
   app.add_option("scenes", files, "scene files")->required();
   app.add_option("--backends", backends, "comma-separated: traditional, cga, pga");
   app.add_option("--threads", threads, "threads the stages may use (1 to 256)");
+  app.add_flag("--fine-grains", fine,
+               "split every parallel loop into chunks of at most 4 items (slower; runs every parallel path)");
   CLI11_PARSE(app, argc, argv);
   int status = 0;
   try {
     core::set_threads(threads);
+    core::set_fine_grains(fine);
     std::vector<std::string> names;
     std::stringstream list(backends);
     for (std::string b; std::getline(list, b, ',');) names.push_back(b);

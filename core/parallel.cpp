@@ -23,8 +23,10 @@ thread_local bool t_in_item = false;  // detail::in_item()
 // that wakes late, after its loop is over, claims nothing of the next one:
 // the caller waits only for the chunks taken, never for a sleeping worker.
 // A waiting thread spins a while before it sleeps: a collision step posts
-// several loops of tens of microseconds, and waking a sleeping thread takes
-// about as long.
+// its loops a millisecond or so apart (the world's blocks, the narrowphase),
+// and waking a sleeping thread takes tens of microseconds each time: with
+// 10^5 polls the worker slept between steps, and the 1,000-body box's
+// blocks took 0.045 s of its 0.5 s where 10^6 polls take 0.024.
 class Pool {
  public:
   explicit Pool(int workers) {
@@ -79,12 +81,12 @@ class Pool {
   std::atomic<std::size_t> done_{0};     // chunks finished
   std::exception_ptr error_;
 
-  // Whether ready() came true within some 10^5 polls (a few hundred µs),
+  // Whether ready() came true within some 10^6 polls (a few milliseconds),
   // yielding the core every 256 polls: on a machine whose other core is
   // taken, a spinning thread would otherwise hold the one the work needs.
   template <class Ready>
   static bool spin(Ready&& ready) {
-    for (int k = 1; k <= 100000; ++k) {
+    for (int k = 1; k <= 1000000; ++k) {
       if (ready()) return true;
       if (k % 256 == 0) std::this_thread::yield();
     }
@@ -133,6 +135,7 @@ class Pool {
 };
 
 int g_threads = 1;
+bool g_fine_grains = false;
 std::unique_ptr<Pool> g_pool;
 
 }  // namespace
@@ -148,6 +151,9 @@ void set_threads(int n) {
 int threads() { return g_threads; }
 
 bool detail::in_item() { return t_in_item; }
+
+void set_fine_grains(bool on) { g_fine_grains = on; }
+bool fine_grains() { return g_fine_grains; }
 
 void detail::run_chunks(std::size_t n, std::size_t grain, void* context,
                         void (*call)(void*, std::size_t, std::size_t)) {

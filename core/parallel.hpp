@@ -34,13 +34,36 @@ void run_chunks(std::size_t n, std::size_t grain, void* context, void (*call)(vo
 bool in_item();
 }  // namespace detail
 
+// The stages' grains: a chunk must hold some 100 µs of work, or moving its
+// items' data between the cores' caches (read next by a stage on one
+// thread) costs more than the second core saves. Measured on the scale
+// boxes (docs/results/scale.md): with a grain of 32 bodies and 8 pairs, two
+// threads ran the 1,000-body box at 0.8x one thread's speed, the
+// narrowphase alone at 0.6x.
+inline constexpr std::size_t kGrainLight = 8192;  // ~20 ns items: a body's pose, reach or forces, a box test
+inline constexpr std::size_t kGrainPlace = 1024;  // a body's narrowphase geometry placed, ~150 ns
+inline constexpr std::size_t kGrainPair = 512;    // a pair's narrowphase test, 200 ns and up
+
+// For the determinism check (gacompare-state-hash --fine-grains): every
+// loop is cut into chunks of at most 4 items, so that a scene small enough
+// to check in seconds still runs every parallel path. Never faster.
+void set_fine_grains(bool on);
+bool fine_grains();
+inline std::size_t grain_of(std::size_t grain) { return fine_grains() && grain > 4 ? 4 : grain; }
+
+// Whether for_each_index(n, f, grain) splits its items across threads.
+inline bool runs_parallel(std::size_t n, std::size_t grain) {
+  return threads() > 1 && n >= 2 * grain_of(grain) && !detail::in_item();
+}
+
 // f(k) for every k in [0, n); f must write only what item k owns.
 template <class F>
 void for_each_index(std::size_t n, F&& f, std::size_t grain = 32) {
-  if (threads() == 1 || n < 2 * grain || detail::in_item()) {
+  if (!runs_parallel(n, grain)) {
     for (std::size_t k = 0; k < n; ++k) f(k);
     return;
   }
+  grain = grain_of(grain);
   detail::run_chunks(n, grain, &f, [](void* context, std::size_t begin, std::size_t end) {
     F& g = *static_cast<std::remove_reference_t<F>*>(context);
     for (std::size_t k = begin; k < end; ++k) g(k);

@@ -112,7 +112,7 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     // scales with |M| as the quaternion's q̇ does with |q|.
     put(dydt, at.motor, cga::widen<Motor::blades>(-0.5 * (mo * line(wb, r.transpose() * v))));
     put(dydt, at.momentum, wrench);
-  });
+  }, core::kGrainLight);
 }
 
 bool RigidBodies::renormalise(const Model& m, std::span<double> y) {

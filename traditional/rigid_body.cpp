@@ -169,7 +169,7 @@ void RigidBodies::derivative(const Model& m, double t, std::span<const double> y
     }
     put(dydt, at.p, force);
     put(dydt, at.l, torque);
-  });
+  }, core::kGrainLight);
 }
 
 bool RigidBodies::renormalise(const Model& m, std::span<double> y) {

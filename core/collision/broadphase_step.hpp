@@ -14,7 +14,7 @@ requires collision::NarrowphaseBody<NarrowBody>
 auto Collider<Bodies, NarrowBody, Spheres>::poses(const Model& m, std::span<const double> y, BodyIndices group) const
     -> std::vector<collision::Pose> {
   std::vector<collision::Pose> out(group.size());
-  for_each_index(group.size(), [&](std::size_t k) { out[k] = Bodies::pose(m, y, k); });
+  for_each_index(group.size(), [&](std::size_t k) { out[k] = Bodies::pose(m, y, k); }, kGrainLight);
   return out;
 }
 
@@ -57,7 +57,8 @@ auto Collider<Bodies, NarrowBody, Spheres>::detect(State& state, const Model& m,
     // Each pair's test on the run's threads (core/parallel.hpp), the erasing in order.
     const auto drop_away = [&](std::vector<std::pair<int, int>>& list, std::span<const double> grow) {
       std::vector<char> away(list.size());
-      for_each_index(list.size(), [&](std::size_t k) { away[k] = misses_static(pose, group, centres, list[k], grow); });
+      for_each_index(
+          list.size(), [&](std::size_t k) { away[k] = misses_static(pose, group, centres, list[k], grow); }, kGrainLight);
       std::size_t kept = 0;
       for (std::size_t k = 0; k < list.size(); ++k)
         if (!away[k]) list[kept++] = list[k];

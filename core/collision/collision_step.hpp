@@ -131,7 +131,7 @@ class CollisionStep {
     std::vector<double> margin(n);
     for_each_index(n, [&](std::size_t k) {
       if (!s_.sleep.is_asleep(k)) margin[k] = c_.reach(m_, y0, setup.all_bodies, k, h);
-    });
+    }, kGrainLight);
     const double farthest = 0.5 * setup.min_inradius / kLeastSubStep;  // the most a body may move in one step
     for (std::size_t k = 0; k < n; ++k)
       if (!(margin[k] <= farthest)) fail_too_fast(k, margin[k], t0, h);  // the first in body order

@@ -170,7 +170,7 @@ struct Simulation {
   static bool in_blocks(const Model& m, const OdeSolver& solver) {
     const auto method = solver.method();
     return threads() > 1 && m.offset == 0 && (method == SolverMethod::rk4 || method == SolverMethod::euler) &&
-           m.bodies.bodies.size() >= kBlockBodies * static_cast<std::size_t>(threads());
+           m.bodies.bodies.size() >= grain_of(kBlockBodies) * static_cast<std::size_t>(threads());
   }
   static void integrate_in_blocks(const Model& m, Data& data, OdeSolver& solver, double& t, double t1,
                                   std::vector<double>& y, Profile& profile) {

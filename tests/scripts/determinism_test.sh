@@ -19,7 +19,10 @@ scenes=("$dir/box_1000.json" "$pile")
 backends=traditional,cga,pga
 "$tool" "${scenes[@]}" --backends "$backends" --threads 1 >"$dir/one"
 "$tool" "${scenes[@]}" --backends "$backends" --threads 2 >"$dir/two"
-settings=("two threads:$dir/two")
+# The box's loops are mostly too short to split at the stages' grains:
+# --fine-grains splits every one (and the pile's bodies into blocks).
+"$tool" "${scenes[@]}" --backends "$backends" --threads 2 --fine-grains >"$dir/fine"
+settings=("two threads:$dir/two" "two threads, every loop split:$dir/fine")
 if [ -n "$other" ]; then
   "$other" "${scenes[@]}" --backends "$backends" --threads 1 >"$dir/other"
   settings+=("the other compiler's build, one thread:$dir/other")
