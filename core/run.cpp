@@ -40,6 +40,8 @@ std::string state_hash(const Run& run) {
       put_all(bytes, b.velocity), put_all(bytes, b.angular_velocity);
     }
   }
+  put(bytes, run.solver.steps_accepted), put(bytes, run.solver.steps_rejected);
+  put(bytes, run.solver.derivative_evaluations), put(bytes, run.solver.min_step), put(bytes, run.solver.max_step);
   put(bytes, static_cast<std::uint64_t>(run.counters.size()));
   for (const auto& [name, value] : run.counters) put(bytes, name), put(bytes, value);
   put(bytes, run.error.value_or(""));

@@ -113,7 +113,7 @@ def main():
     ap.add_argument("--sizes", default="27,125,1000")
     ap.add_argument("--long", action="store_true", help="add N = 10,000 (tens of minutes)")
     ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--duration", type=float, default=0.5)
+    ap.add_argument("--duration", type=float, default=1.0)
     ap.add_argument("--every", type=float, default=0.05)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--backends", default="traditional,cga,bullet")

@@ -36,7 +36,7 @@ def generate(ctx):
                              "anchor": "#bodies-in-a-box"})
     thread_args = ["--sizes", "1000", "--repeat", "3"] if ctx.quick else ["--sizes", "1000,10000", "--repeat", "3"]
     threads = strip_command_line(ctx.run(["python3", "bench/scale/threads.py", "--binary", ctx.gacompare, *thread_args,
-                                          "--duration", "0.5"]))
+                                          "--duration", "1"]))
     two_threads = {}  # N -> (speed-up, same answer), traditional
     for line in threads.splitlines():
         cols = [c.strip() for c in line.strip("|").split("|")]

@@ -51,7 +51,7 @@ TEST(StateHash, SeesOneBitOfOneDouble) {
   EXPECT_NE(state_hash(a), state_hash(d));
 }
 
-TEST(StateHash, SeesCountersTheStopAndTheShapeOfTheSamples) {
+TEST(StateHash, SeesCountersTheSolversStepsTheStopAndTheShapeOfTheSamples) {
   const std::string base = state_hash(answer());
   core::Run counter = answer();
   counter.counters["responses"] = 13;
@@ -59,12 +59,14 @@ TEST(StateHash, SeesCountersTheStopAndTheShapeOfTheSamples) {
   added.counters["sleep_islands"] = 0;
   core::Run stopped = answer();
   stopped.error = "non-finite state";
+  core::Run steps = answer();
+  steps.solver.steps_accepted = 1;
   core::Run fewer = answer();
   fewer.samples.pop_back();
   core::Run moved = answer();  // a body moved from one sample into the next keeps every number, not the grouping
   moved.samples[1].bodies.pop_back();
   moved.samples[2].bodies.insert(moved.samples[2].bodies.begin(), answer().samples[1].bodies[1]);
-  for (const core::Run* r : {&counter, &added, &stopped, &fewer, &moved}) EXPECT_NE(base, state_hash(*r));
+  for (const core::Run* r : {&counter, &added, &stopped, &steps, &fewer, &moved}) EXPECT_NE(base, state_hash(*r));
 }
 
 }  // namespace
