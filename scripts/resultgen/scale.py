@@ -27,7 +27,8 @@ def generate(ctx):
     r = data["results"][largest]
     cells = [f"{b} {r[b]['per_simulated_second']:.3g} s" for b in ("traditional", "cga", "bullet") if b in r]
     if cells:
-        headline.append({"finding": f"{int(largest):,} bodies in a box: run time per simulated second",
+        headline.append({"finding": f"{int(largest):,} bodies in a box: run time per simulated second "
+                                    "(each backend's own pile: the scene is chaotic)",
                          "value": ", ".join(cells), "anchor": "#bodies-in-a-box"})
     for line in scale.splitlines():
         m = re.match(r"- (\w+): p = ([0-9.]+)", line)
@@ -46,7 +47,7 @@ def generate(ctx):
         n = max(two_threads)
         speedup, same = two_threads[n]
         headline.append({"finding": f"{n:,} bodies in a box on two threads against one, traditional",
-                         "value": f"{speedup}× faster, the same answer bit for bit" if same
+                         "value": f"{speedup}× one thread's speed, the same answer bit for bit" if same
                          else f"{speedup}×, and the answers DIFFER",
                          "anchor": "#what-a-second-thread-buys"})
     asleep = {}  # N -> backend -> settled cost asleep / awake
