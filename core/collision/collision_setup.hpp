@@ -32,6 +32,10 @@ struct CollisionCounters {
   // too long for them), the bodies those held (each re-integrated from the
   // step's start) and the largest island seen.
   std::uint64_t islands = 0, local_islands = 0, local_island_bodies = 0, largest_island = 0, local_steps = 0;
+  // Why each island was stepped alone (a pair deeper than the tolerance, a
+  // body fast enough to pass through a thin one, or both), and the most
+  // bodies one such island held: what a crowded pile's cost comes from.
+  std::uint64_t local_islands_deep = 0, local_islands_fast = 0, largest_local_island = 0;
   std::uint64_t island_narrowphase_pairs = 0;  // of narrowphase_pairs, those tested in islands' sub-steps
   std::uint64_t links_apart = 0;  // candidate pairs unlinked: apart by more than their reach (collision_step.hpp)
   std::uint64_t links_face_tested = 0;  // of the pairs apart, those whose link every face normal decided

@@ -166,6 +166,9 @@ class CollisionStep {
         if (!hits[k].empty()) c_.respond(s_, m_, y, setup.all_bodies, hits[k], h, profile);
         continue;
       }
+      s_.counters.local_islands_deep += deepest > tol;
+      s_.counters.local_islands_fast += most > 0.5 * setup.min_inradius;
+      s_.counters.largest_local_island = std::max<std::uint64_t>(s_.counters.largest_local_island, is.moving);
       step_alone(is, d.candidates, hits[k], y, y0, t0, t1, profile);
     }
   }

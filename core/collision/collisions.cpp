@@ -32,6 +32,9 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["islands"] = islands;
   out["islands_stepped_alone"] = local_islands;
   out["island_bodies_stepped_alone"] = local_island_bodies;
+  out["islands_stepped_alone_deep"] = local_islands_deep;
+  out["islands_stepped_alone_fast"] = local_islands_fast;
+  out["largest_island_stepped_alone"] = largest_local_island;
   out["island_steps"] = local_steps;
   out["island_narrowphase_pairs"] = island_narrowphase_pairs;
   out["links_apart"] = links_apart;
