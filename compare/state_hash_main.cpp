@@ -1,6 +1,6 @@
 // gacompare-state-hash: runs scenes through backends and prints each run's
-// state hash (core/run.hpp: every sample's state to the bit and every
-// counter), one line per run: `HASH  SCENE  BACKEND`. The determinism check
+// state hash (core/run.hpp: every sample's state to the bit, the solver's
+// steps and every counter), one line per run: `HASH  SCENE  BACKEND`. The determinism check
 // runs it on 1 and 2 threads and from the gcc and clang builds and compares
 // the lines (tests/scripts/determinism_test.sh); it links the backends and
 // nothing of the harness, so that a second compiler builds it in minutes.

@@ -3,18 +3,17 @@
 #include "core/model/sha256.hpp"
 
 #include <bit>
-#include <cstring>
+#include <cstdint>
 
 namespace gacompare::core {
 namespace {
 
-// Each double as its 8 bytes, little-endian whatever the machine, so that
-// the hash names the bits and not their layout in memory.
-void put(std::string& out, double x) {
-  auto bits = std::bit_cast<std::uint64_t>(x);
+// A count, or a double's bits, as 8 bytes little-endian whatever the
+// machine, so that the hash names the bits and not their layout in memory.
+void put(std::string& out, std::uint64_t bits) {
   for (int k = 0; k < 8; ++k, bits >>= 8) out.push_back(static_cast<char>(bits & 0xff));
 }
-void put(std::string& out, std::uint64_t x) { put(out, std::bit_cast<double>(x)); }
+void put(std::string& out, double x) { put(out, std::bit_cast<std::uint64_t>(x)); }
 template <class V>
 void put_all(std::string& out, const V& v) {
   for (Eigen::Index k = 0; k < v.size(); ++k) put(out, v[k]);

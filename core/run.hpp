@@ -56,9 +56,9 @@ struct Run {
 // The run's answer as one SHA-256 (64 hex digits): every sample's time and
 // state (each double's bits, so that any change in the last place shows),
 // the solver's steps and evaluations, every counter, and the error if the
-// run stopped. Not the timings, which
-// differ from run to run. Equal hashes mean the same answer to the bit: the
-// determinism check compares runs on 1 and 2 threads and from gcc and clang.
+// run stopped; not the timings, which differ from run to run. Equal hashes
+// mean the same answer to the bit: the determinism check compares runs on 1
+// and 2 threads and from gcc and clang.
 std::string state_hash(const Run& run);
 
 }  // namespace gacompare::core

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# The determinism check: the same answer to the bit on 1 and 2 threads, and
-# (given a second build's tool) from another compiler. The 1,000-body box of
-# the scale series (bench/scale/box_scene.py --bodies 1000 --seed 1, 0.3 s:
-# some 2,500 responses and 2,200 time-of-impact searches) and the bundled
-# mixed pile (cubes, spheres and a plate settling with friction, 1 s), each through
-# traditional, cga and pga; each run's state
-# hash (core/run.hpp: every sample's state and every counter) printed by
+# The determinism check: the same answer to the bit on 1 and 2 threads (and
+# on 2 with every parallel loop split), and (given a second build's tool)
+# from another compiler. The 1,000-body box of the scale series
+# (bench/scale/box_scene.py --bodies 1000 --seed 1, 0.3 s: some 2,500
+# responses and 2,200 time-of-impact searches) and the bundled mixed pile
+# (cubes, spheres and a plate settling with friction, 1 s), each through
+# traditional, cga and pga; each run's state hash (core/run.hpp: every
+# sample's state, the solver's steps and every counter) printed by
 # gacompare-state-hash.
 #   determinism_test.sh TOOL BOX_SCENE_PY PILE_SCENE [OTHER_TOOL]
 # Passes only when every run printed a hash and every hash is equal across
