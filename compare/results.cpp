@@ -122,7 +122,8 @@ json run_json(const core::Scene& scene, const BackendResult& b) {
               {"max_step", run.solver.max_step}}},
             {"counters", run.counters},
             {"metrics", run.metrics},
-            {"deterministic", b.deterministic}};
+            {"deterministic", b.deterministic},
+            {"state_hash", core::state_hash(run)}};
   if (run.error) j["error"] = *run.error;
   return j;
 }

@@ -20,15 +20,22 @@ bash scripts/build.sh ci
 # machine without Slurm or root it skips saying why.
 GACOMPARE_REQUIRE_SLURM=$ci ctest --preset ci -j2 "$@"
 build/ci/compare/gacompare check data/scenes/*.json --baseline data/reference --quiet
+# Each CI phase says how long it took (CI must stay well under its limit).
+phase() { echo "ci: $1 done at ${SECONDS} s" >&2; }
 if [ "$ci" = 1 ]; then
+  phase "build, tests and check"
   bash scripts/build.sh clang
   bash tests/scripts/determinism_test.sh build/ci/compare/gacompare-state-hash bench/scale/box_scene.py \
     data/scenes/mixed_pile.json build/clang/compare/gacompare-state-hash
+  phase "clang build and determinism check"
   bash scripts/fuzz.sh --seconds 60
+  phase "fuzzing"
   bash scripts/build.sh asan
+  phase "sanitized build"
   # Under the sanitizers the long physics runs (10 s stacks and columns of the
   # contact and stacking families) are left out: they run above, unsanitized,
   # and would take most of CI's time here for no memory error they could show.
   # The Slurm test ran above: the scheduler is not what the sanitizers check.
   GACOMPARE_QUICK_TESTS=1 ctest --preset asan -j2 -LE slurm "$@"
+  phase "sanitized tests"
 fi

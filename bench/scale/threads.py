@@ -11,10 +11,10 @@ alternates between repeats. Quoted per backend: the run's seconds per
 simulated second, median (min-max), for 1 and 2 threads, the speed-up (the
 ratio of the medians), and whether every sample of every body (positions,
 orientations, velocities) and every counter came out the same on two
-threads as on one: a SHA-256 of them, equal or not.
+threads as on one: each run's state hash (results.json "state_hash", the
+SHA-256 of every sample's doubles to the bit, the solver's steps and every
+counter; core/run.hpp), equal or not.
 """
-import hashlib
-import json
 import os
 import statistics
 import sys
@@ -24,12 +24,6 @@ sys.path.insert(0, HERE)
 import box_scene  # noqa: E402
 import runs  # noqa: E402
 from runs import cell  # noqa: E402
-
-
-def state_hash(run):
-    """The run's answer: every sample's bodies and the counters, canonical JSON."""
-    answer = {"samples": [s["bodies"] for s in run["samples"]], "counters": run["counters"]}
-    return hashlib.sha256(json.dumps(answer, sort_keys=True).encode()).hexdigest()
 
 
 def main():
@@ -49,7 +43,7 @@ def main():
                 got = runs.compare(args.binary, scene, os.path.join(tmp, f"box_{n}_{t}_{rep}"), order, threads=t)
                 for b in backends:
                     wall[(b, t)].append(got[b]["wall_seconds"]["median"] / args.duration)
-                    hashes[(b, t)].add(state_hash(got[b]))
+                    hashes[(b, t)].add(got[b]["state_hash"])
         for b in backends:
             speedup = statistics.median(wall[(b, 1)]) / statistics.median(wall[(b, 2)])
             same = len(hashes[(b, 1)] | hashes[(b, 2)]) == 1
