@@ -20,7 +20,7 @@ bash scripts/build.sh ci
 # machine without Slurm or root it skips saying why.
 GACOMPARE_REQUIRE_SLURM=$ci ctest --preset ci -j2 "$@"
 build/ci/compare/gacompare check data/scenes/*.json --baseline data/reference --quiet
-# Each CI phase says how long it took (CI must stay well under its limit).
+# Each CI phase prints the seconds elapsed when it ends (CI must stay well under its limit).
 phase() { echo "ci: $1 done at ${SECONDS} s" >&2; }
 if [ "$ci" = 1 ]; then
   phase "build, tests and check"

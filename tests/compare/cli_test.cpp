@@ -91,6 +91,19 @@ TEST(Cli, CompareWritesResultsAndReportForEveryBackend) {
     EXPECT_GT(run["solver"]["derivative_evaluations"].get<int>(), 0);
     EXPECT_TRUE(run["counters"].is_object());
   }
+  // Each run's state hash is the one gacompare-state-hash prints for the same
+  // scene and backend (a separate run in another process).
+  FILE* tool = ::popen((std::string(GACOMPARE_STATE_HASH_BIN) + " " + kScene + " --backends traditional,cga,pga").c_str(), "r");
+  ASSERT_NE(tool, nullptr);
+  std::array<char, 256> line{};
+  for (const auto& run : j["runs"]) {
+    ASSERT_NE(std::fgets(line.data(), line.size(), tool), nullptr) << run["backend"];
+    const std::string printed(line.data());
+    EXPECT_EQ(run["state_hash"].get<std::string>().size(), 64u);
+    EXPECT_EQ(printed.substr(0, 64), run["state_hash"].get<std::string>()) << run["backend"];
+    EXPECT_NE(printed.find(run["backend"].get<std::string>()), std::string::npos) << printed;
+  }
+  EXPECT_EQ(::pclose(tool), 0);
   const std::string md = read_text(out / "report.md");
   EXPECT_NE(md.find("| `integrate` |"), std::string::npos) << md;
   EXPECT_NE(md.find("| `forces` |"), std::string::npos) << md;

@@ -3,7 +3,8 @@
 # on 2 with every parallel loop split), and (given a second build's tool)
 # from another compiler. The 1,000-body box of the scale series
 # (bench/scale/box_scene.py --bodies 1000 --seed 1, 0.3 s: some 2,500
-# responses and 2,200 time-of-impact searches) and the bundled mixed pile
+# responses and 2,200 time-of-impact searches; 300 bodies for 0.2 s under
+# GACOMPARE_QUICK_TESTS=1) and the bundled mixed pile
 # (cubes, spheres and a plate settling with friction, 1 s), each through
 # traditional, cga and pga; each run's state hash (core/run.hpp: every
 # sample's state, the solver's steps and every counter) printed by
