@@ -188,13 +188,13 @@ StackCase pyramid(ContactSolverMethod method, int layers, bool square, double mu
                            " below), each layer dropped 1 mm", mu > 0 ? cat(", friction ", format_mu(mu), " on every face") : ", frictionless and without bounce",
                            ": every cube comes to rest where it was placed"));
   // With friction the pyramid rests (drift and speed within bounds once
-  // landed), but in the landings' impacts the friction bounds (μ times the
-  // normal impulses they change) do not settle in the direct solve's rounds,
-  // and the sweeps after them end on their cap.
+  // landed), but in the landings' impacts the friction discs (μ times the
+  // normal impulses they change) do not settle, in the direct solve's rounds
+  // or in the sweeps after them, which end on their cap.
   if (mu > 0)
-    c.open = "in the landings' impacts the friction bounds do not settle in the direct solve's rounds, and 5 to 21 "
-             "solves of the landings (by case and backend) end on the sweep cap; the wall's first landings also move its "
-             "fourth layer ~1e-4 m sideways";
+    c.open = "in the landings' impacts the friction discs do not settle, in the direct solve's rounds or in the sweeps "
+             "after them, and 3 to 24 solves of the landings (by case and backend) end on the sweep cap; the wall's first "
+             "landings also move its fourth layer ~1e-4 m sideways";
   return c;
 }
 

@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
+#include <csignal>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -64,6 +65,32 @@ void remove_temporaries(const fs::path& dir, int depth) {
   }
 }
 
+// The temporaries of `path` that a killed writer left (.NAME.PID-N.tmp with
+// a PID that no longer runs): a command that writes files outside a locked
+// output folder (collide's --out and --table) would otherwise keep them for
+// ever. A live writer's, and this process's, are left alone.
+void remove_dead_temporaries_of(const fs::path& path) {
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::string prefix = ".";  // piece by piece, as in temporary_for (GCC 12's false -Wrestrict)
+  prefix += path.filename().string();
+  prefix += '.';
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.compare(0, prefix.size(), prefix) != 0 || !is_temporary(it->path())) continue;
+    const std::string rest = name.substr(prefix.size());  // PID-N.tmp, or another file's NAME.PID-N.tmp
+    const auto dash = rest.find('-');
+    if (dash == std::string::npos || dash == 0 || dash > 9 ||
+        !std::all_of(rest.begin(), rest.begin() + static_cast<std::ptrdiff_t>(dash), [](char c) { return c >= '0' && c <= '9'; }) ||
+        rest.find('.') != rest.size() - 4)
+      continue;
+    const auto pid = static_cast<pid_t>(std::stol(rest.substr(0, dash)));
+    if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    if (!fs::is_regular_file(it->symlink_status(ec))) continue;
+    fs::remove(it->path(), ec);
+  }
+}
+
 }  // namespace
 
 void write_file_atomically(const fs::path& path, const std::string& text) {
@@ -105,6 +132,7 @@ void write_file_atomically(const fs::path& path, const std::string& text) {
   fd = -1;
   if (closed != 0) fail("cannot write", errno);  // a delayed write error (NFS, a full disk)
   if (::rename(named.c_str(), path.c_str()) != 0) fail("cannot rename " + named.string() + " to it", errno);
+  remove_dead_temporaries_of(path);
 }
 
 std::string file_name_for(const std::string& name) {

@@ -44,11 +44,12 @@ struct CollisionCounters {
   // friction ended on the cone (sliding) and the friction rows warm started.
   std::uint64_t friction_contacts = 0, sliding_contacts = 0, friction_warm_started = 0;
   // The contact solver's work: solves (velocity and correction), the direct
-  // solver's active-set changes, factorisations, friction-bound rounds and
-  // solves it left unsolved (the sweeps then finish them), and how many
+  // solver's active-set changes, factorisations, proximal steps (lcp.cpp),
+  // friction-bound rounds and solves it left unsolved (the sweeps then
+  // finish them), and how many
   // sweeps each solve took: sweep_histogram[k] counts solves of 2^k to
   // 2^(k+1) − 1 sweeps (the last bucket: the cap).
-  std::uint64_t solves = 0, direct_pivots = 0, direct_factorisations = 0, direct_rounds = 0, direct_unsolved = 0;
+  std::uint64_t solves = 0, direct_pivots = 0, direct_factorisations = 0, direct_proximal = 0, direct_rounds = 0, direct_unsolved = 0;
   std::uint64_t projections_refused = 0;  // the direct solver's position projections dropped (contact_solver.hpp)
   std::array<std::uint64_t, 11> sweep_histogram{};
   // The velocity residual at each velocity solve's exit (m/s: the largest

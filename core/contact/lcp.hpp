@@ -55,12 +55,14 @@ struct BlcpSettings {
   int max_pivots = 256;         // active-set changes before giving up
   double velocity_tolerance = 0;  // w's sign conditions hold to this (m/s or m)
   int dense_up_to = 48;         // rows at most for a dense factorisation
+  int max_proximal = 64;        // proximal steps at most, once the active set is found (lcp.cpp)
 };
 
 struct BlcpResult {
   bool solved = false;
   int pivots = 0;          // active-set changes made
   int factorisations = 0;
+  int proximal = 0;        // proximal steps taken to remove the regularisation's bias
   double residual = 0;     // the worst violation of the conditions above (w's units)
 };
 

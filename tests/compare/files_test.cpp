@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace {
@@ -61,6 +62,29 @@ TEST(Files, WritesAreWholeOrNothing) {
     EXPECT_NE(std::string(e.what()).find("Is a directory"), std::string::npos) << e.what();
   }
   EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator()), 2);  // a.txt and the folder b.txt
+}
+
+// A write outside a locked folder (collide's --out and --table) removes the
+// temporaries of the same file that a killed writer left (its PID no longer
+// runs), and leaves a live writer's, this process's and other files' alone.
+TEST(Files, AWriteRemovesWhatADeadWriterOfItLeft) {
+  const fs::path d = fresh("dead_writer");
+  fs::create_directories(d);
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ASSERT_GT(child, 0);
+  ::waitpid(child, nullptr, 0);  // its PID now names no process
+  const std::string dead = std::to_string(child), self = std::to_string(::getpid());
+  for (const std::string& name : {".t.md." + dead + "-1.tmp", ".t.md." + self + "-7.tmp", std::string(".t.md.1-0.tmp"),
+                                  ".t.md.x." + dead + "-1.tmp", ".other.md." + dead + "-0.tmp"})
+    std::ofstream(d / name) << "half";
+  write_file_atomically(d / "t.md", "whole\n");
+  EXPECT_FALSE(fs::exists(d / (".t.md." + dead + "-1.tmp")));
+  EXPECT_TRUE(fs::exists(d / (".t.md." + self + "-7.tmp")));  // this process's own
+  EXPECT_TRUE(fs::exists(d / ".t.md.1-0.tmp"));               // PID 1 runs
+  EXPECT_TRUE(fs::exists(d / (".t.md.x." + dead + "-1.tmp")));  // another file's (t.md.x)
+  EXPECT_TRUE(fs::exists(d / (".other.md." + dead + "-0.tmp")));
+  EXPECT_EQ(slurp(d / "t.md"), "whole\n");
 }
 
 // A folder is held by one lock at a time (flock: a second open file
