@@ -12,6 +12,7 @@
 // every case to at most S simulated seconds (the table says so: a shortened
 // stack is judged on its shorter run); --method sets how our backends find
 // contacts (the collisions effect's "method"; Bullet has its own).
+#include "core/memory.hpp"
 #include "compare/runner.hpp"
 #include "answers/contact_family.hpp"
 #include "core/error.hpp"
@@ -45,6 +46,7 @@ int usage() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  gacompare::core::keep_freed_memory();  // core/memory.hpp: a stack's solves no longer shrink and regrow the heap
   std::string filter, command = "contact_table";
   std::vector<std::string> backends{"traditional", "cga", "pga", "bullet"};
   double max_duration = 0;

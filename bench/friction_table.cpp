@@ -8,6 +8,7 @@
 //
 // Without arguments: the three bundled friction scenes, the rolling spheres,
 // the top on the floor and the mixed pile (answers/friction_answers.hpp).
+#include "core/memory.hpp"
 #include "compare/runner.hpp"
 #include "core/error.hpp"
 #include "answers/friction_answers.hpp"
@@ -21,6 +22,7 @@
 using namespace gacompare;
 
 int main(int argc, char** argv) {
+  gacompare::core::keep_freed_memory();  // core/memory.hpp: a stack's solves no longer shrink and regrow the heap
   std::vector<std::filesystem::path> files;
   for (int i = 1; i < argc; ++i) files.emplace_back(argv[i]);
   if (files.empty())

@@ -20,6 +20,7 @@
 // family's default contact solver (direct),
 // a backend with projected Gauss–Seidel (NAME-pgs), or Bullet (its own
 // sequential impulses, 10 iterations, split impulse).
+#include "core/memory.hpp"
 #include "answers/stacking_family.hpp"
 #include "compare/runner.hpp"
 #include "family_table.hpp"
@@ -55,6 +56,7 @@ int usage() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  gacompare::core::keep_freed_memory();  // core/memory.hpp: a stack's solves no longer shrink and regrow the heap
   std::string filter, command = "stacking_table";
   double duration = 0;  // 0: each case's own
   double restitution = -1;  // < 0: each case's own

@@ -1,6 +1,7 @@
 // gacompare: runs physics scenes through the traditional and geometric-algebra
 // backends and writes comparison reports. Results go to files, logs to stderr.
 // Exit codes: 0 success, 1 a run or check failed, 2 bad usage or bad input.
+#include "core/memory.hpp"
 #include "compare/accuracy.hpp"
 #include "compare/collide.hpp"
 #include "compare/check.hpp"
@@ -507,6 +508,7 @@ std::string precheck(int argc, char** argv, const CLI::App& app) {
 }
 
 int main(int argc, char** argv) {
+  gacompare::core::keep_freed_memory();  // core/memory.hpp: a stack's solves no longer shrink and regrow the heap
   namespace cli = compare::cli;
   CLI::App app{"gacompare: traditional vs geometric-algebra physics, stage by stage"};
   // Progress goes to stderr, one line per scene and repeat, terminal or not; --quiet silences it.

@@ -6,6 +6,7 @@
 // nothing of the harness, so that a second compiler builds it in minutes.
 // Exit codes: 0 every run finished, 1 a run stopped (its hash and reason are
 // still printed), 2 bad usage or bad input.
+#include "core/memory.hpp"
 #include "cga/backend.hpp"
 #include "core/error.hpp"
 #include "core/model/generators.hpp"
@@ -36,6 +37,7 @@ core::Run run_on(const std::string& backend, const core::Scene& scene) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  gacompare::core::keep_freed_memory();  // core/memory.hpp: a stack's solves no longer shrink and regrow the heap
   CLI::App app{"Runs scenes through backends and prints each run's state hash: HASH  SCENE  BACKEND"};
   std::vector<std::string> files;
   std::string backends = "traditional,cga";
