@@ -191,6 +191,30 @@ TEST(Blcp, WeightsChooseTheLeastWeightedAnswer) {
   }
 }
 
+// A row whose warm start lies within rounding of its bound (what the last
+// step's answer leaves at a redundant corner) starts on it: one
+// factorisation, no pivot, and the exact answer. Started free, it would be
+// driven negative by the first solve and blocked, at a second factorisation.
+TEST(Blcp, AWarmStartWithinRoundingOfABoundStartsOnIt) {
+  Blcp p;
+  p.A = sparse(Eigen::MatrixXd::Identity(2, 2));
+  p.b = Eigen::Vector2d(-1, 1);  // row 0 carries 1; row 1 parts (w = 1 at λ = 0)
+  p.lo = Eigen::VectorXd::Zero(2);
+  p.hi = Eigen::VectorXd::Constant(2, kInf);
+  Eigen::VectorXd lambda = Eigen::Vector2d(1, 1e-18);
+  const BlcpResult r = solve_blcp(p, lambda, {});
+  ASSERT_TRUE(r.solved);
+  EXPECT_EQ(r.factorisations, 1);
+  EXPECT_EQ(r.pivots, 0);
+  EXPECT_EQ(lambda[0], 1.0);
+  EXPECT_EQ(lambda[1], 0.0);
+  // A row well above its bound (1e-9 of the largest impulse) still starts free.
+  lambda = Eigen::Vector2d(1, 1e-9);
+  const BlcpResult free_start = solve_blcp(p, lambda, {});
+  EXPECT_EQ(free_start.factorisations, 2);  // blocked at its bound
+  EXPECT_EQ(lambda[1], 0.0);
+}
+
 // The contact solver weights its friction rows 1e4 (contact_solver.hpp), so
 // their regularisation δ_i is 1e-6 of the largest diagonal, and an answer of
 // the regularised problem is off by about δ_i λ_i in their velocities. Where
