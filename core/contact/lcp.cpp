@@ -170,11 +170,14 @@ double tolerance_of(const Blcp& p, const BlcpSettings& s) {
 
 }  // namespace
 
-double blcp_residual(const Blcp& p, const Eigen::VectorXd& lambda) {
+namespace {
+
+// blcp_residual with A's diagonal given (a lookup per row otherwise).
+double residual_of(const Blcp& p, const Eigen::VectorXd& lambda, const Eigen::VectorXd& diagonal) {
   const Eigen::VectorXd w = p.A * lambda + p.b;
   double worst = 0;
   for (Eigen::Index i = 0; i < w.size(); ++i) {
-    const double d = std::abs(p.A.coeff(i, i));
+    const double d = std::abs(diagonal[i]);
     worst = std::max(worst, d * std::max({0.0, p.lo[i] - lambda[i], lambda[i] - p.hi[i]}));
     const bool at_lo = lambda[i] <= p.lo[i], at_hi = lambda[i] >= p.hi[i];
     // Between the bounds w must vanish; on a bound it may point away from it.
@@ -184,19 +187,28 @@ double blcp_residual(const Blcp& p, const Eigen::VectorXd& lambda) {
   return worst;
 }
 
+}  // namespace
+
+double blcp_residual(const Blcp& p, const Eigen::VectorXd& lambda) {
+  Eigen::VectorXd diagonal(p.b.size());
+  for (Eigen::Index i = 0; i < diagonal.size(); ++i) diagonal[i] = p.A.coeff(i, i);
+  return residual_of(p, lambda, diagonal);
+}
+
 namespace {
 
 // The active-set iterations (see lcp.hpp) on the regularised problem with
 // linear term c: minimise ½ λᵀ(A + D)λ + cᵀλ over the bounds, D = diag(δ),
 // from λ and its rows' states. Returns whether it reached the free rows'
-// minimiser with no row to release within the pivot budget; `system` and
-// `rows` are then the last factorisation and its free rows.
+// minimiser with no row to release within the pivot budget; `system`,
+// `rows` and `rhs` are then the last factorisation, its free rows and the
+// right-hand side it solved.
 bool active_set(const Blcp& p, const Eigen::VectorXd& c, const Eigen::VectorXd& delta, double tol,
                 const BlcpSettings& settings, Eigen::VectorXd& lambda, std::vector<State>& state,
-                std::vector<Eigen::Index>& rows, std::optional<FreeSystem>& system, BlcpResult& result) {
+                std::vector<Eigen::Index>& rows, std::optional<FreeSystem>& system, Eigen::VectorXd& rhs,
+                BlcpResult& result) {
   const Eigen::Index n = c.size();
   std::vector<Eigen::Index> free(static_cast<std::size_t>(n));
-  Eigen::VectorXd rhs;
   for (;;) {
     if (result.pivots >= settings.max_pivots) return false;
     rows.clear();
@@ -265,8 +277,9 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
     return result;
   }
   const double tol = tolerance_of(p, settings);
+  Eigen::VectorXd diagonal(n);
   double dmax = 0;
-  for (Eigen::Index i = 0; i < n; ++i) dmax = std::max(dmax, p.A.coeff(i, i));
+  for (Eigen::Index i = 0; i < n; ++i) diagonal[i] = p.A.coeff(i, i), dmax = std::max(dmax, diagonal[i]);
   const Eigen::VectorXd delta =
       1e-10 * dmax * (p.weight.size() == n ? p.weight : Eigen::VectorXd(Eigen::VectorXd::Ones(n)));
   // A feasible start: the warm start held within its bounds; a row on a bound
@@ -294,12 +307,13 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
   }
   std::vector<Eigen::Index> rows;
   std::optional<FreeSystem> system;  // the last factorisation
+  Eigen::VectorXd rhs;               // and the right-hand side it solved
   Eigen::VectorXd c = p.b;           // the regularised problem's linear term
   Eigen::VectorXd best;              // the best answer so far, once a proximal step is taken
   for (int proximal = 0;; ++proximal) {
-    if (!active_set(p, c, delta, tol, settings, lambda, state, rows, system, result)) {
+    if (!active_set(p, c, delta, tol, settings, lambda, state, rows, system, rhs, result)) {
       if (proximal > 0) lambda = best;  // (its residual is the one recorded)
-      else result.residual = blcp_residual(p, lambda);
+      else result.residual = residual_of(p, lambda, diagonal);
       result.solved = proximal > 0;
       return result;
     }
@@ -307,11 +321,12 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
     // are refined towards the problem itself (δλ taken out of every free
     // row's velocity), kept where they stay within their bounds.
     if (!rows.empty()) {
-      Eigen::VectorXd on_bounds = lambda;
-      for (const Eigen::Index i : rows) on_bounds[i] = 0;
-      const Eigen::VectorXd known = p.A * on_bounds + p.b;
-      Eigen::VectorXd rhs(static_cast<Eigen::Index>(rows.size()));
-      for (std::size_t k = 0; k < rows.size(); ++k) rhs[static_cast<Eigen::Index>(k)] = -known[rows[k]];
+      if (proximal > 0) {  // the problem's own right-hand side (the last solve's had c for b)
+        Eigen::VectorXd on_bounds = lambda;
+        for (const Eigen::Index i : rows) on_bounds[i] = 0;
+        const Eigen::VectorXd known = p.A * on_bounds + p.b;
+        for (std::size_t k = 0; k < rows.size(); ++k) rhs[static_cast<Eigen::Index>(k)] = -known[rows[k]];
+      }
       const Eigen::VectorXd y = system->refine(rhs, lambda(rows), 1e-3 * tol);
       bool inside = true;
       for (std::size_t k = 0; k < rows.size(); ++k) {
@@ -320,7 +335,7 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
       }
       if (inside) lambda(rows) = y;
     }
-    const double residual = blcp_residual(p, lambda);
+    const double residual = residual_of(p, lambda, diagonal);
     // Where the refinement would leave the bounds (the regularisation chose
     // an active set the problem itself does not: a heavily weighted row's
     // velocity is δ_i λ_i off), proximal point steps (Rockafellar 1976)
