@@ -21,8 +21,12 @@
 // a step blocks joins its bound, and at a free minimiser every row that its
 // bound holds against the gradient is released. The objective falls at every
 // step, so the method cannot cycle, and a warm start's active set is usually
-// already right: one factorisation is the common case. (Block principal
-// pivoting, tried first, cycled on the degenerate sets of a face's corners.)
+// already right: one factorisation is the common case. Where many rows meet
+// their bounds at once (a stack landing), the free minimiser projected onto
+// the bounds is taken instead of the step to the first bound when it lowers
+// the objective more, so they join their bounds in one iteration (lcp.cpp).
+// (Block principal pivoting, tried first, cycled on the degenerate sets of a
+// face's corners.)
 //
 // A is singular whenever rows are redundant (the four corners of a face have
 // three degrees of freedom between them): then the answer's λ is not unique

@@ -142,6 +142,35 @@ TEST(Blcp, ColumnGetsItsStaticsInOneFactorisation) {
   }
 }
 
+// A column whose bodies all part at once (each moving up at g h, warm
+// started with its resting loads): every row leaves its load for its bound
+// in one projected step, where a step to the first bound each time took one
+// factorisation per row. The answer is no impulse anywhere, every row
+// parting.
+TEST(Blcp, RowsThatAllPartLeaveTogether) {
+  const int n = 40;
+  const double gh = 9.81e-3;
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 0; k < n; ++k) {
+    j(k, k) = 1;
+    if (k > 0) j(k, k - 1) = -1;
+  }
+  Blcp p;
+  p.A = sparse(j * j.transpose());
+  Eigen::VectorXd up(n);
+  for (int k = 0; k < n; ++k) up[k] = (k + 1) * gh;  // faster the higher: every row opens
+  p.b = j * up;
+  p.lo = Eigen::VectorXd::Zero(n);
+  p.hi = Eigen::VectorXd::Constant(n, kInf);
+  Eigen::VectorXd lambda(n);
+  for (int k = 0; k < n; ++k) lambda[k] = (n - k) * gh;
+  const BlcpResult r = solve_blcp(p, lambda, {});
+  ASSERT_TRUE(r.solved);
+  EXPECT_LE(r.factorisations, 2);
+  EXPECT_EQ(lambda.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_LE(blcp_residual(p, lambda), 0.0);
+}
+
 // Four corners of a face on the ground: four rows, three freedoms (lift and
 // two tilts). The load is shared (not uniquely), every corner stops, and the
 // body neither turns nor tilts: w vanishes to rounding.
