@@ -64,20 +64,31 @@ def scene(bodies, seed, duration, every):
             "velocity": [rng.uniform(-2, 2) for _ in range(3)],
             "angular_velocity": [rng.uniform(-5, 5) for _ in range(3)],
         })
+    out = collision_scene(
+        f"box_{bodies}",
+        f"{bodies} mixed bodies thrown about in a closed box at constant density (the scale "
+        f"benchmark's scene, bench/scale/box_scene.py --bodies {bodies} --seed {seed}); chaotic, so the backends "
+        "part and the divergence check is bounded by the box.",
+        duration, every, 0.0005, 0.7, walls + out)
+    out["check"] = {"max_divergence": 2 * span}
+    return out
+
+
+def collision_scene(name, description, duration, every, dt, restitution, bodies):
+    """A scene of `bodies` under gravity with collisions (penetration tolerance
+    1e-4 m, collision step 1 ms) integrated by RK4 at `dt`: the scale scenes'
+    common part (pyramid_scene.py uses it too)."""
     return {
-        "name": f"box_{bodies}",
-        "description": f"{bodies} mixed bodies thrown about in a closed box at constant density (the scale "
-                       f"benchmark's scene, bench/scale/box_scene.py --bodies {bodies} --seed {seed}); chaotic, so the backends "
-                       "part and the divergence check is bounded by the box.",
+        "name": name,
+        "description": description,
         "duration": duration,
         "output": {"every": every},
-        "solver": {"method": "rk4", "dt": 0.0005},
+        "solver": {"method": "rk4", "dt": dt},
         "effects": [
             {"type": "gravity", "g": [0, 0, -9.81]},
-            {"type": "collisions", "restitution": 0.7, "penetration_tolerance": 0.0001, "step": 0.001},
+            {"type": "collisions", "restitution": restitution, "penetration_tolerance": 0.0001, "step": 0.001},
         ],
-        "bodies": walls + out,
-        "check": {"max_divergence": 2 * span},
+        "bodies": bodies,
     }
 
 

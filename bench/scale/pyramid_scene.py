@@ -16,7 +16,11 @@ Names are c<index>, bottom layer first; the slab is "ground".
 """
 import argparse
 import json
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import box_scene  # noqa: E402
 
 CUBE, DROP, GAP = 0.2, 0.001, 0.02
 
@@ -38,21 +42,12 @@ def scene(layers, duration, every):
                 bodies.append({"name": f"c{count}", "shape": {"box": [CUBE, CUBE, CUBE]}, "mass": 1.0,
                                "position": [start + i * pitch, start + j * pitch,
                                             CUBE / 2 + level * CUBE + (level + 1) * DROP]})
-    return {
-        "name": f"pyramid_{layers}",
-        "description": f"A square pyramid of {layers} layers ({count} cubes of 0.2 m, 2 cm apart in each row, each "
-                       "on four below), each level dropped 1 mm onto the one below, frictionless and without "
-                       f"bounce (bench/scale/pyramid_scene.py --layers {layers}): every cube comes to rest where it "
-                       "was placed.",
-        "duration": duration,
-        "output": {"every": every},
-        "solver": {"method": "rk4", "dt": 0.001},
-        "effects": [
-            {"type": "gravity", "g": [0, 0, -9.81]},
-            {"type": "collisions", "restitution": 0, "penetration_tolerance": 0.0001, "step": 0.001},
-        ],
-        "bodies": bodies,
-    }
+    return box_scene.collision_scene(
+        f"pyramid_{layers}",
+        f"A square pyramid of {layers} layers ({count} cubes of 0.2 m, 2 cm apart in each row, each on four below), "
+        "each level dropped 1 mm onto the one below, frictionless and without bounce "
+        f"(bench/scale/pyramid_scene.py --layers {layers}): every cube comes to rest where it was placed.",
+        duration, every, 0.001, 0, bodies)
 
 
 def main():
