@@ -193,7 +193,7 @@ StackCase pyramid(ContactSolverMethod method, int layers, bool square, double mu
   // or in the sweeps after them, which end on their cap.
   if (mu > 0)
     c.open = "in the landings' impacts the friction discs do not settle, in the direct solve's rounds or in the sweeps "
-             "after them, and 3 to 24 solves of the landings (by case and backend) end on the sweep cap; the wall's first "
+             "after them, and 3 to 60 solves of the landings (by case and backend) end on the sweep cap; the wall's first "
              "landings also move its fourth layer ~1e-4 m sideways";
   return c;
 }
