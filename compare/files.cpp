@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <set>
 #include <atomic>
+#include <optional>
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
@@ -37,21 +38,33 @@ fs::path temporary_for(const fs::path& path) {
   return path.parent_path() / name;
 }
 
+// What temporary_for made, read back from a name: the file it stands for
+// (NAME) and the writer's PID.
+struct Temporary {
+  std::string file;
+  pid_t pid;
+};
+
 // Exactly what temporary_for makes, .NAME.PID-N.tmp, and nothing else of the
 // user's: --out may be a folder that holds other files.
-bool is_temporary(const fs::path& p) {
+std::optional<Temporary> temporary_of(const fs::path& p) {
   const std::string name = p.filename().string();
-  if (name.size() < 9 || name.front() != '.' || name.compare(name.size() - 4, 4, ".tmp") != 0) return false;
+  if (name.size() < 9 || name.front() != '.' || name.compare(name.size() - 4, 4, ".tmp") != 0) return std::nullopt;
   const std::string middle = name.substr(0, name.size() - 4);  // .NAME.PID-N
   const auto dash = middle.rfind('-'), dot = middle.rfind('.', dash == std::string::npos ? 0 : dash);
   if (dash == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 >= dash || dash + 1 >= middle.size())
-    return false;
+    return std::nullopt;
   const auto digits = [&](std::size_t a, std::size_t b) {
     return std::all_of(middle.begin() + static_cast<std::ptrdiff_t>(a), middle.begin() + static_cast<std::ptrdiff_t>(b),
                        [](char c) { return c >= '0' && c <= '9'; });
   };
-  return digits(dot + 1, dash) && digits(dash + 1, middle.size());
+  if (!digits(dot + 1, dash) || !digits(dash + 1, middle.size())) return std::nullopt;
+  // A PID longer than any pid_t holds names no process (and would overflow).
+  const std::string pid = middle.substr(dot + 1, dash - dot - 1);
+  return Temporary{middle.substr(1, dot - 1), pid.size() > 9 ? pid_t{-1} : static_cast<pid_t>(std::stol(pid))};
 }
+
+bool is_temporary(const fs::path& p) { return temporary_of(p).has_value(); }
 
 // What a killed run left: .NAME*.tmp files in the folder and the folders below
 // it (a compare of several scenes writes one folder per scene, a sweep cells/).
@@ -71,21 +84,12 @@ void remove_temporaries(const fs::path& dir, int depth) {
 // ever. A live writer's, and this process's, are left alone.
 void remove_dead_temporaries_of(const fs::path& path) {
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  std::string prefix = ".";  // piece by piece, as in temporary_for (GCC 12's false -Wrestrict)
-  prefix += path.filename().string();
-  prefix += '.';
+  const std::string file = path.filename().string();
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.compare(0, prefix.size(), prefix) != 0 || !is_temporary(it->path())) continue;
-    const std::string rest = name.substr(prefix.size());  // PID-N.tmp, or another file's NAME.PID-N.tmp
-    const auto dash = rest.find('-');
-    if (dash == std::string::npos || dash == 0 || dash > 9 ||
-        !std::all_of(rest.begin(), rest.begin() + static_cast<std::ptrdiff_t>(dash), [](char c) { return c >= '0' && c <= '9'; }) ||
-        rest.find('.') != rest.size() - 4)
-      continue;
-    const auto pid = static_cast<pid_t>(std::stol(rest.substr(0, dash)));
-    if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    const std::optional<Temporary> t = temporary_of(it->path());
+    if (!t || t->file != file || t->pid == ::getpid()) continue;
+    if (t->pid > 0 && (::kill(t->pid, 0) == 0 || errno != ESRCH)) continue;
     if (!fs::is_regular_file(it->symlink_status(ec))) continue;
     fs::remove(it->path(), ec);
   }

@@ -25,23 +25,29 @@ import box_scene  # noqa: E402
 CUBE, DROP, GAP = 0.2, 0.001, 0.02
 
 
-def scene(layers, duration, every):
-    if layers < 1:
-        raise SystemExit("pyramid_scene: --layers must be at least 1")
+def cubes(layers):
+    """Each cube as (name, where it starts, its rest), bottom layer first."""
     pitch = CUBE + GAP
-    side = layers * pitch + 1
-    bodies = [{"name": "ground", "shape": {"box": [side, side, 0.2]}, "mass": 100, "position": [0, 0, -0.1],
-               "static": True}]
-    count = 0
+    out = []
     for level in range(layers):
         row = layers - level
         start = -(row - 1) * pitch / 2
         for i in range(row):
             for j in range(row):
-                count += 1
-                bodies.append({"name": f"c{count}", "shape": {"box": [CUBE, CUBE, CUBE]}, "mass": 1.0,
-                               "position": [start + i * pitch, start + j * pitch,
-                                            CUBE / 2 + level * CUBE + (level + 1) * DROP]})
+                rest = (start + i * pitch, start + j * pitch, CUBE / 2 + level * CUBE)
+                out.append((f"c{len(out) + 1}", (rest[0], rest[1], rest[2] + (level + 1) * DROP), rest))
+    return out
+
+
+def scene(layers, duration, every):
+    if layers < 1:
+        raise SystemExit("pyramid_scene: --layers must be at least 1")
+    side = layers * (CUBE + GAP) + 1
+    bodies = [{"name": "ground", "shape": {"box": [side, side, 0.2]}, "mass": 100, "position": [0, 0, -0.1],
+               "static": True}]
+    for name, start, _ in cubes(layers):
+        bodies.append({"name": name, "shape": {"box": [CUBE, CUBE, CUBE]}, "mass": 1.0, "position": list(start)})
+    count = len(bodies) - 1
     return box_scene.collision_scene(
         f"pyramid_{layers}",
         f"A square pyramid of {layers} layers ({count} cubes of 0.2 m, 2 cm apart in each row, each on four below), "

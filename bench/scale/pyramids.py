@@ -25,20 +25,6 @@ import pyramid_scene  # noqa: E402
 import runs  # noqa: E402
 from runs import cell  # noqa: E402
 
-CUBE, DROP = pyramid_scene.CUBE, pyramid_scene.DROP
-
-
-def rests(scene):
-    """Each cube's rest: where it was placed, (level + 1) mm lower."""
-    out = {}
-    for b in scene["bodies"]:
-        if b.get("static"):
-            continue
-        x, y, z = b["position"]
-        level = round((z - CUBE / 2) / (CUBE + DROP))
-        out[b["name"]] = (x, y, z - (level + 1) * DROP)
-    return out
-
 
 def main():
     ap = runs.parser(__doc__, sizes="3,5,10", repeat=1)
@@ -51,7 +37,7 @@ def main():
     backends = args.backends.split(",")
     for layers in sizes:
         scene = pyramid_scene.scene(layers, args.duration, args.duration)
-        rest = rests(scene)
+        rest = {name: at for name, _, at in pyramid_scene.cubes(layers)}
         times = {b: [] for b in backends}
         last = {}
         for k in range(args.repeat):
