@@ -187,14 +187,17 @@ StackCase pyramid(ContactSolverMethod method, int layers, bool square, double mu
                            std::to_string(count), " cubes, 2 cm apart in each row, each on ", square ? "four" : "two",
                            " below), each layer dropped 1 mm", mu > 0 ? cat(", friction ", format_mu(mu), " on every face") : ", frictionless and without bounce",
                            ": every cube comes to rest where it was placed"));
-  // With friction the pyramid rests (drift and speed within bounds once
-  // landed), but in the landings' impacts the friction discs (μ times the
-  // normal impulses they change) do not settle, in the direct solve's rounds
-  // or in the sweeps after them, which end on their cap.
-  if (mu > 0)
-    c.open = "in the landings' impacts the friction discs do not settle, in the direct solve's rounds or in the sweeps "
-             "after them, and 3 to 60 solves of the landings (by case and backend) end on the sweep cap; the wall's first "
-             "landings also move its fourth layer ~1e-4 m sideways";
+  // The square pyramid stays open: in one landing per backend Newton's method
+  // (coulomb.hpp) stalls at 1.2–1.4 times the velocity tolerance (rows of a
+  // face's corners carrying 2e-10 N s, parting at 1e-11 m/s), and the sweeps
+  // after it end on their cap. Its bottom layer also comes to rest held
+  // tilted by the layers above (by friction; ~1e-5 rad, up to 3e-6 m above
+  // its rest), which the family's "at or below its rest" answer counts as a
+  // failure; the frictionless pyramid cannot hold a tilt.
+  if (mu > 0 && square)
+    c.open = "in one landing per backend Newton's method stalls at 1.2 to 1.4 times the velocity tolerance and the "
+             "sweeps after it end on their cap; the bottom layer rests held tilted by friction, up to 3e-6 m above its "
+             "rest";
   return c;
 }
 

@@ -51,6 +51,10 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["direct_proximal_steps"] = direct_proximal;
   out["direct_friction_rounds"] = direct_rounds;
   out["direct_unsolved"] = direct_unsolved;
+  out["coulomb_exact_starts"] = coulomb_exact_starts;
+  out["coulomb_solves"] = coulomb_solves;
+  out["coulomb_newton_steps"] = coulomb_newton_steps;
+  out["coulomb_unsolved"] = coulomb_unsolved;
   out["projections_refused"] = projections_refused;
   if (sleeping) {
     out["sleep_islands"] = sleep_islands;

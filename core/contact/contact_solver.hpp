@@ -31,12 +31,16 @@
 //
 // Coulomb friction (beyond the report, whose response is
 // frictionless): only for pairs with μ = √(μ_a μ_b) > 0, two tangent rows per
-// contact in the same Gauss–Seidel, held in the disc |λ_t| ≤ μ λ̄_n (λ̄_n its
+// contact in the same Gauss–Seidel, acting in the pair's contact plane
+// (in_plane_of), held in the disc |λ_t| ≤ μ λ̄_n (λ̄_n its
 // pair's mean normal impulse, friction_limit) and warm
 // started (Friction below), and resting contacts displaced by ½ h of their
-// impulses' velocity change (friction_displacement). With μ = 0 no friction
+// impulses' velocity change (friction_displacement). The direct solve's
+// answer is made exact for the disc by Newton's method where its box rounds
+// leave it short (polish; core/contact/coulomb.hpp). With μ = 0 no friction
 // row exists and every run is as before, bit for bit.
 #include "core/collision/collision_setup.hpp"
+#include "core/contact/coulomb.hpp"
 #include "core/contact/lcp.hpp"
 #include "core/stage.hpp"
 
@@ -194,6 +198,19 @@ class ContactSolver {
       Bodies::push(of[r.sa], f.arm_a[d], f.t[d], -dl);
     }
 
+    // A contact point moved along n into its pair's contact plane (through the
+    // pair's points' centroid, normal to n), where its friction rows act.
+    // The points of a face contact lie off that plane by the clipped depths
+    // and the face's tilt; a tangent row at such a point picks up n-motion
+    // (a pitching face's corners then "slip" by tilt × speed), and four
+    // corners that all stick over-determine the three in-plane freedoms: on a
+    // square pyramid's landing the sweeps' fixed point did not exist (the best
+    // answer left 3.4e-9 m/s, Newton's method found), and the sweeps cycled. In
+    // the plane, a tangent row sees only the in-plane motion and the twist
+    // about n, which any set of sticking points can share.
+    static Vec3 in_plane_of(const Vec3& point, const Vec3& n, const Vec3& centre) {
+      return point - n * n.dot(point - centre);
+    }
     // The friction rows of normal row r (index `row`) at contact point p: the
     // tangents from the relative velocity's part in the contact plane (the
     // backend's in_plane and quarter_turn), or from the coordinate axis least
@@ -400,7 +417,7 @@ class ContactSolver {
     // Returns whether every round was solved.
     bool direct(std::vector<Row>& rows, std::vector<Friction>& frictions, Motions& motion,
                 const std::vector<char>& moving, double converged, const std::vector<char>& pull = {},
-                Eigen::SparseMatrix<double>* known = nullptr) const {
+                Eigen::SparseMatrix<double>* known = nullptr, double* left = nullptr) const {
       if (rows.empty()) return true;
       bool solved = true;
       const std::vector<Line> lines = lines_of(rows, frictions);
@@ -422,6 +439,14 @@ class ContactSolver {
       for (std::size_t k = 0; k < pull.size(); ++k)
         if (pull[k]) p.lo[static_cast<Eigen::Index>(k)] = -std::numeric_limits<double>::infinity();
       Eigen::VectorXd lambda = held;
+      // With friction: a warm start that is already the sweeps' fixed point
+      // (a stack at rest, its load carried over) is kept as it is. The box's
+      // rounds would move a contact held on its disc's rim into the box's
+      // corner, for Newton's method to bring back at every step.
+      const bool coulomb = !frictions.empty() && pull.empty();
+      const contact::CoulombProblem c = coulomb ? coulomb_problem(p, nr, frictions) : contact::CoulombProblem{};
+      const double held_residual = coulomb ? contact::coulomb_residual(c, held) : 0.0;
+      if (coulomb && held_residual <= converged) return ++counters.coulomb_exact_starts, true;
       contact::BlcpSettings how;
       how.velocity_tolerance = converged;
       // The lines fall into groups that share no moving body (a static body
@@ -450,6 +475,7 @@ class ContactSolver {
         solve_group(g, x, group, local, nr, frictions, how, solved);
         lambda(group) = x;
       }
+      if (coulomb && polish(c, lambda, held, held_residual, converged) && left) *left = contact::coulomb_residual(c, lambda);
       for (Eigen::Index k = 0; k < nr; ++k) {
         Row& r = rows[static_cast<std::size_t>(k)];
         if (const double dl = lambda[k] - held[k]; dl != 0) push(r, motion, dl);
@@ -463,6 +489,38 @@ class ContactSolver {
           f.lambda[d] = lambda[k];
         }
       return solved;
+    }
+    // The Coulomb problem of the direct solve's lines (coulomb.hpp): its
+    // normal rows first, each friction's two tangents after them.
+    static contact::CoulombProblem coulomb_problem(const contact::Blcp& p, Eigen::Index nr,
+                                                   const std::vector<Friction>& frictions) {
+      contact::CoulombProblem c{p.A, p.b, nr, {}};
+      c.discs.reserve(frictions.size());
+      for (std::size_t q = 0; q < frictions.size(); ++q)
+        c.discs.push_back({nr + static_cast<Eigen::Index>(2 * q), frictions[q].mu,
+                           static_cast<Eigen::Index>(frictions[q].pair_begin),
+                           static_cast<Eigen::Index>(frictions[q].pair_end)});
+      return c;
+    }
+    // The rounds' answer made exact for Coulomb's disc where it is not yet
+    // the sweeps' fixed point (a box's corner outside its disc, rounds whose
+    // bounds did not settle), by Newton's method from the rounds' answer or
+    // the warm start, whichever is nearer. Kept only if it lowers the
+    // residual; the sweeps then finish from whichever answer is better.
+    // Returns whether Newton's method ran and met the tolerance.
+    bool polish(const contact::CoulombProblem& c, Eigen::VectorXd& lambda, const Eigen::VectorXd& held,
+                double held_residual, double converged) const {
+      const double before = contact::coulomb_residual(c, lambda);
+      if (before <= converged) return false;
+      Eigen::VectorXd x = held_residual < before ? held : lambda;
+      contact::CoulombSettings how;
+      how.velocity_tolerance = converged;
+      const contact::CoulombResult r = contact::solve_coulomb(c, x, how);
+      ++counters.coulomb_solves;
+      counters.coulomb_newton_steps += static_cast<std::uint64_t>(r.iterations);
+      if (!r.solved) ++counters.coulomb_unsolved;
+      if (r.residual < before) lambda = x;
+      return r.solved;
     }
     // One group's rounds (see direct): each friction row's box ±μ λ̄_n from
     // the normal impulses of the round before (friction_limit: its pair's
@@ -764,6 +822,10 @@ class ContactSolver {
         const std::size_t sa = slot(h.a), sb = slot(h.b);
         const Motion& ma = motion[sa];
         const Motion& mb = motion[sb];
+        // The pair's contact plane: through its points' centroid, normal to n.
+        Vec3 centre = Vec3::Zero();
+        for (const auto& c : h.features) centre += c.point;
+        if (!h.features.empty()) centre /= static_cast<double>(h.features.size());
         for (const auto& c : h.features) {
           Row r{wa, wb, sa, sb, hi, c.normal, c.point - Bodies::position(ma), c.point - Bodies::position(mb),
                 Bodies::arm(ma, c.point, c.normal), Bodies::arm(mb, c.point, c.normal), 0, 0, 0, 0, c.depth};
@@ -775,7 +837,7 @@ class ContactSolver {
           resting_pair[hi] |= resting;
           r.target = r.before < 0 ? -(resting ? 0.0 : eps) * r.before : 0.0;
           if (mu > 0) r.friction = static_cast<std::ptrdiff_t>(frictions.size()),
-                      frictions.push_back(friction_row(rows.size(), r, c.point, mu, motion));
+                      frictions.push_back(friction_row(rows.size(), r, in_plane_of(c.point, c.normal, centre), mu, motion));
           rows.push_back(r);
         }
       }
@@ -796,8 +858,17 @@ class ContactSolver {
       const bool direct_solve = setup.settings.contact_solver == ContactSolverMethod::direct;
       const std::vector<char> moves = direct_solve ? moving(world, body_of) : std::vector<char>{};
       Eigen::SparseMatrix<double> a;  // the direct solve's Delassus matrix, for its projection
-      if (direct_solve) direct(rows, frictions, motion, moves, converged, {}, &a);
-      counters.add_residual(solve(rows, motion, converged, counters.sweep_cap_hits, frictions));
+      // Where Newton's method made the direct solve's answer exact (coulomb.hpp),
+      // its residual as the sweeps measure it; else −1. Such an answer is the
+      // sweeps' fixed point and they are not run: near a contact between
+      // sticking and sliding that fixed point can repel Gauss–Seidel (from
+      // answers 1e-12 inside the tolerance the sweeps drifted out and ran to
+      // their cap on the friction pyramids). Every other answer is finished
+      // by the sweeps as before.
+      double left = -1;
+      if (direct_solve) direct(rows, frictions, motion, moves, converged, {}, &a, &left);
+      if (left >= 0) counters.add_residual(left);
+      else counters.add_residual(solve(rows, motion, converged, counters.sweep_cap_hits, frictions));
       // Sliding: friction on the rim of its disc and the contact still slipping
       // after the solve. (On the rim alone is not sliding: the corners of a face
       // that sticks share its load in no unique way, and the direct solve may
