@@ -14,12 +14,17 @@
 // make at row i, and Φ = 0 is exactly a sweep that changes nothing. (With a
 // row's own ρ, a sliding contact's friction opposes (u_t0 ρ_t0, u_t1 ρ_t1),
 // not u_t: Coulomb's direction where the two tangents' effective masses are
-// equal, and off it by their ratio's share otherwise. The sweeps put t0
-// along the slip, so a contact sliding straight on feels it exactly.) This is
-// Alart & Curnier's (1991) formulation with the sweep's own per-row ρ, and the
-// Newton method over it is the one of Alart & Curnier and of Acary, Brémond &
-// Huber (2018, "On solving contact problems with Coulomb friction"), with
-// a backtracking line search on ‖diag(A) Φ‖².
+// equal, and turned off it where they differ. The sweeps put t0 along the
+// slip, so a contact sliding straight on feels it exactly.) This is Alart &
+// Curnier's (1991) formulation with the sweep's own per-row ρ, and the Newton
+// method over it is theirs as surveyed by Acary, Brémond & Huber (2018, "On
+// solving contact problems with Coulomb friction"). Inside Newton's method
+// the radius is taken from the projected normal impulses, μ mean max(0, λ_k −
+// ρ_k u_k), equal to μ λ̄_n at an answer (Alart & Curnier's augmented form: a
+// parting row counts as unloaded before its impulse reaches 0); the kinks of
+// max and of the projection are smoothed with a parameter τ that is followed
+// down to 0 (Chen–Harker–Kanzow–Smale); and each step is cut back by an
+// Armijo search on ‖diag(A) Φ_τ‖² (coulomb.cpp).
 //
 // Why not the box of lcp.hpp alone: the direct solve holds each friction row
 // in a box ±μ λ̄_n taken from the normal impulses of its previous round. In a
