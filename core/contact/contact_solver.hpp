@@ -475,7 +475,7 @@ class ContactSolver {
         solve_group(g, x, group, local, nr, frictions, how, solved);
         lambda(group) = x;
       }
-      if (coulomb && polish(c, lambda, held, held_residual, converged) && left) *left = contact::coulomb_residual(c, lambda);
+      if (const double exact = coulomb ? polish(c, lambda, held, held_residual, converged) : -1; left) *left = exact;
       for (Eigen::Index k = 0; k < nr; ++k) {
         Row& r = rows[static_cast<std::size_t>(k)];
         if (const double dl = lambda[k] - held[k]; dl != 0) push(r, motion, dl);
@@ -507,11 +507,12 @@ class ContactSolver {
     // bounds did not settle), by Newton's method from the rounds' answer or
     // the warm start, whichever is nearer. Kept only if it lowers the
     // residual; the sweeps then finish from whichever answer is better.
-    // Returns whether Newton's method ran and met the tolerance.
-    bool polish(const contact::CoulombProblem& c, Eigen::VectorXd& lambda, const Eigen::VectorXd& held,
+    // Returns the residual of Newton's answer where it ran and met the
+    // tolerance, else −1.
+    double polish(const contact::CoulombProblem& c, Eigen::VectorXd& lambda, const Eigen::VectorXd& held,
                 double held_residual, double converged) const {
       const double before = contact::coulomb_residual(c, lambda);
-      if (before <= converged) return false;
+      if (before <= converged) return -1;
       Eigen::VectorXd x = held_residual < before ? held : lambda;
       contact::CoulombSettings how;
       how.velocity_tolerance = converged;
@@ -520,7 +521,7 @@ class ContactSolver {
       counters.coulomb_newton_steps += static_cast<std::uint64_t>(r.iterations);
       if (!r.solved) ++counters.coulomb_unsolved;
       if (r.residual < before) lambda = x;
-      return r.solved;
+      return r.solved ? r.residual : -1;
     }
     // One group's rounds (see direct): each friction row's box ±μ λ̄_n from
     // the normal impulses of the round before (friction_limit: its pair's

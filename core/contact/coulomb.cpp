@@ -34,12 +34,12 @@ struct Radius {
   double r;
   std::vector<std::pair<Index, double>> slope;  // (k, ∂r/∂z_k)
 };
-Radius radius_of(const CoulombProblem& p, const CoulombDisc& d, const Eigen::VectorXd& x, const Eigen::VectorXd& u,
+Radius radius_of(const CoulombDisc& d, const Eigen::VectorXd& a, const Eigen::VectorXd& x, const Eigen::VectorXd& u,
                  double tau) {
   Radius out{0, {}};
   const double share = d.mu / static_cast<double>(d.pair_end - d.pair_begin);
   for (Index k = d.pair_begin; k < d.pair_end; ++k) {
-    const Smooth m = smooth_max(x[k] - u[k] / p.A.coeff(k, k), 0, tau);
+    const Smooth m = smooth_max(x[k] - u[k] / a[k], 0, tau);
     out.r += share * m.value;
     out.slope.emplace_back(k, share * m.da);
   }
@@ -54,12 +54,12 @@ struct DiscState {
   double size;
   Smooth m;
 };
-DiscState disc_state(const CoulombProblem& p, const CoulombDisc& d, const Eigen::VectorXd& x,
+DiscState disc_state(const CoulombDisc& d, const Eigen::VectorXd& a, const Eigen::VectorXd& x,
                      const Eigen::VectorXd& u, double tau) {
   DiscState s;
   const Index j = d.tangent;
-  s.z = Eigen::Vector2d(x[j] - u[j] / p.A.coeff(j, j), x[j + 1] - u[j + 1] / p.A.coeff(j + 1, j + 1));
-  s.radius = radius_of(p, d, x, u, tau);
+  s.z = Eigen::Vector2d(x[j] - u[j] / a[j], x[j + 1] - u[j + 1] / a[j + 1]);
+  s.radius = radius_of(d, a, x, u, tau);
   s.size = s.z.norm();
   s.m = smooth_max(s.size, s.radius.r, tau);
   s.projected = s.m.value > 0 ? Eigen::Vector2d(s.z * (s.radius.r / s.m.value)) : Eigen::Vector2d::Zero();
@@ -67,20 +67,20 @@ DiscState disc_state(const CoulombProblem& p, const CoulombDisc& d, const Eigen:
 }
 
 // Φ_τ at x (see coulomb.hpp; τ = 0: Φ itself), given u = A x + b.
-void residual(const CoulombProblem& p, const Eigen::VectorXd& x, const Eigen::VectorXd& u, double tau,
-              Eigen::VectorXd& phi) {
+void residual(const CoulombProblem& p, const Eigen::VectorXd& a, const Eigen::VectorXd& x, const Eigen::VectorXd& u,
+              double tau, Eigen::VectorXd& phi) {
   phi.resize(x.size());
-  for (Index i = 0; i < p.normals; ++i) phi[i] = x[i] - smooth_max(x[i] - u[i] / p.A.coeff(i, i), 0, tau).value;
+  for (Index i = 0; i < p.normals; ++i) phi[i] = x[i] - smooth_max(x[i] - u[i] / a[i], 0, tau).value;
   for (const CoulombDisc& d : p.discs) {
-    const DiscState s = disc_state(p, d, x, u, tau);
+    const DiscState s = disc_state(d, a, x, u, tau);
     phi[d.tangent] = x[d.tangent] - s.projected[0], phi[d.tangent + 1] = x[d.tangent + 1] - s.projected[1];
   }
 }
 
 // The velocity-scaled size of Φ: max |Φ_i| A_ii.
-double worst(const CoulombProblem& p, const Eigen::VectorXd& phi) {
+double worst(const Eigen::VectorXd& a, const Eigen::VectorXd& phi) {
   double w = 0;
-  for (Index i = 0; i < phi.size(); ++i) w = std::max(w, std::abs(phi[i]) * p.A.coeff(i, i));
+  for (Index i = 0; i < phi.size(); ++i) w = std::max(w, std::abs(phi[i]) * a[i]);
   return w;
 }
 double merit(const Eigen::VectorXd& phi, const Eigen::VectorXd& diagonal) {
@@ -89,18 +89,18 @@ double merit(const Eigen::VectorXd& phi, const Eigen::VectorXd& diagonal) {
 
 // Φ_τ's Jacobian at x (at τ = 0 one element of Φ's generalised Jacobian),
 // shifted by εI, as triplets.
-void jacobian(const CoulombProblem& p, const Eigen::VectorXd& x, const Eigen::VectorXd& u, double tau, double shift,
-              std::vector<Triplet>& t) {
+void jacobian(const CoulombProblem& p, const Eigen::VectorXd& a, const Eigen::VectorXd& x, const Eigen::VectorXd& u,
+              double tau, double shift, std::vector<Triplet>& t) {
   t.clear();
   // Row `of` of ρ A, times s, into row `row` (A symmetric: row `of` is column `of`).
   const auto a_row = [&](Index row, Index of, double s) {
     if (s == 0) return;
-    const double rho = 1 / p.A.coeff(of, of);
+    const double rho = 1 / a[of];
     for (Eigen::SparseMatrix<double>::InnerIterator it(p.A, of); it; ++it) t.emplace_back(row, it.row(), s * rho * it.value());
   };
   // Normal row: Φ_i = λ_i − m(z_i), ∂z_i/∂λ = e_i − ρ_i A_i, so ∂Φ_i = (1 − m') e_i + m' ρ_i A_i.
   for (Index i = 0; i < p.normals; ++i) {
-    const double slope = smooth_max(x[i] - u[i] / p.A.coeff(i, i), 0, tau).da;
+    const double slope = smooth_max(x[i] - u[i] / a[i], 0, tau).da;
     t.emplace_back(i, i, 1 - slope);
     a_row(i, i, slope);
   }
@@ -109,7 +109,7 @@ void jacobian(const CoulombProblem& p, const Eigen::VectorXd& x, const Eigen::Ve
   //   P_z = (r/m) I − (r/m²) m_a z ẑᵀ,   P_r = z/m − (r/m²) m_b z.
   for (const CoulombDisc& d : p.discs) {
     const Index j = d.tangent;
-    const DiscState s = disc_state(p, d, x, u, tau);
+    const DiscState s = disc_state(d, a, x, u, tau);
     const double r = s.radius.r, m = s.m.value;
     Eigen::Matrix2d Pz = Eigen::Matrix2d::Zero();
     Eigen::Vector2d Pr = Eigen::Vector2d::Zero();
@@ -118,16 +118,16 @@ void jacobian(const CoulombProblem& p, const Eigen::VectorXd& x, const Eigen::Ve
       Pz = (r / m) * Eigen::Matrix2d::Identity() - (r / (m * m)) * s.m.da * s.z * n.transpose();
       Pr = s.z / m - (r / (m * m)) * s.m.db * s.z;
     }
-    for (int a = 0; a < 2; ++a) {
+    for (int e = 0; e < 2; ++e) {
       for (int c = 0; c < 2; ++c) {
-        t.emplace_back(j + a, j + c, (a == c ? 1.0 : 0.0) - Pz(a, c));
-        a_row(j + a, j + c, Pz(a, c));
+        t.emplace_back(j + e, j + c, (e == c ? 1.0 : 0.0) - Pz(e, c));
+        a_row(j + e, j + c, Pz(e, c));
       }
       // −P_r ∂r, ∂r = Σ_k r'_k (e_k − ρ_k A_k).
-      if (Pr[a] != 0)
+      if (Pr[e] != 0)
         for (const auto& [k, slope] : s.radius.slope) {
-          t.emplace_back(j + a, k, -Pr[a] * slope);
-          a_row(j + a, k, Pr[a] * slope);
+          t.emplace_back(j + e, k, -Pr[e] * slope);
+          a_row(j + e, k, Pr[e] * slope);
         }
     }
   }
@@ -138,7 +138,7 @@ void jacobian(const CoulombProblem& p, const Eigen::VectorXd& x, const Eigen::Ve
 
 Eigen::SparseMatrix<double> coulomb_jacobian(const CoulombProblem& p, const Eigen::VectorXd& lambda, double tau) {
   std::vector<Triplet> t;
-  jacobian(p, lambda, p.A * lambda + p.b, tau, 0, t);
+  jacobian(p, p.A.diagonal(), lambda, p.A * lambda + p.b, tau, 0, t);
   Eigen::SparseMatrix<double> J(lambda.size(), lambda.size());
   J.setFromTriplets(t.begin(), t.end());
   return J;
@@ -146,21 +146,24 @@ Eigen::SparseMatrix<double> coulomb_jacobian(const CoulombProblem& p, const Eige
 
 Eigen::VectorXd coulomb_map(const CoulombProblem& p, const Eigen::VectorXd& lambda, double tau) {
   Eigen::VectorXd phi;
-  residual(p, lambda, p.A * lambda + p.b, tau, phi);
+  residual(p, p.A.diagonal(), lambda, p.A * lambda + p.b, tau, phi);
   return phi;
 }
 
 double coulomb_residual(const CoulombProblem& p, const Eigen::VectorXd& lambda) {
-  return worst(p, coulomb_map(p, lambda, 0));
+  const Eigen::VectorXd a = p.A.diagonal();
+  Eigen::VectorXd phi;
+  residual(p, a, lambda, p.A * lambda + p.b, 0, phi);
+  return worst(a, phi);
 }
 
 CoulombResult solve_coulomb(const CoulombProblem& p, Eigen::VectorXd& lambda, const CoulombSettings& settings) {
   const Index n = lambda.size();
-  const Eigen::VectorXd diagonal = p.A.diagonal();
+  const Eigen::VectorXd a = p.A.diagonal();  // A_ii = 1/ρ_i, read once
   Eigen::VectorXd u = p.A * lambda + p.b, exact, phi;
-  residual(p, lambda, u, 0, exact);
+  residual(p, a, lambda, u, 0, exact);
   CoulombResult result;
-  result.residual = worst(p, exact);
+  result.residual = worst(a, exact);
   std::vector<Triplet> t;
   Eigen::SparseMatrix<double> J(n, n);
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
@@ -169,6 +172,7 @@ CoulombResult solve_coulomb(const CoulombProblem& p, Eigen::VectorXd& lambda, co
   // cross the kinks of Φ (a row parting, a contact between sticking and
   // sliding) along a smooth path instead of zigzagging across them.
   double tau = exact.lpNorm<Eigen::Infinity>() + settings.smoothing * lambda.lpNorm<Eigen::Infinity>();
+  residual(p, a, lambda, u, tau, phi);  // Φ_τ at the iterate, kept current below
   // The shift adapts (Levenberg–Marquardt): raised a hundredfold when no step
   // along Newton's direction lowers the merit, tenfold when the step had to
   // be cut below a quarter, and lowered tenfold after a longer one.
@@ -178,9 +182,8 @@ CoulombResult solve_coulomb(const CoulombProblem& p, Eigen::VectorXd& lambda, co
   Eigen::VectorXd best = lambda;
   double best_residual = result.residual;
   while (result.residual > settings.velocity_tolerance && result.iterations < settings.max_iterations) {
-    residual(p, lambda, u, tau, phi);
-    const double f = merit(phi, diagonal);
-    jacobian(p, lambda, u, tau, shift, t);
+    const double f = merit(phi, a);
+    jacobian(p, a, lambda, u, tau, shift, t);
     J.setFromTriplets(t.begin(), t.end());
     lu.analyzePattern(J);
     lu.factorize(J);
@@ -193,9 +196,9 @@ CoulombResult solve_coulomb(const CoulombProblem& p, Eigen::VectorXd& lambda, co
       for (double alpha = 1; alpha >= 1.0 / 256; alpha /= 2) {
         trial = lambda + alpha * step;
         trial_u = p.A * trial + p.b;
-        residual(p, trial, trial_u, tau, trial_phi);
-        if (merit(trial_phi, diagonal) <= (1 - 1e-4 * alpha) * f) {
-          lambda.swap(trial), u.swap(trial_u), taken = alpha;
+        residual(p, a, trial, trial_u, tau, trial_phi);
+        if (merit(trial_phi, a) <= (1 - 1e-4 * alpha) * f) {
+          lambda.swap(trial), u.swap(trial_u), phi.swap(trial_phi), taken = alpha;
           break;
         }
       }
@@ -208,13 +211,12 @@ CoulombResult solve_coulomb(const CoulombProblem& p, Eigen::VectorXd& lambda, co
     // is mostly its null space): shift more; a full one, less.
     if (taken >= 0.25) shift = std::max(settings.shift, shift / 10);
     else shift = std::min(settings.max_shift, shift * 10);
-    residual(p, lambda, u, 0, exact);
-    result.residual = worst(p, exact);
+    residual(p, a, lambda, u, 0, exact);
+    result.residual = worst(a, exact);
     if (result.residual < best_residual) best = lambda, best_residual = result.residual;
     // τ falls tenfold once Φ_τ is small against it (the smoothed problem
     // nearly solved: its answer then lies near the next one's).
-    residual(p, lambda, u, tau, phi);
-    if (phi.lpNorm<Eigen::Infinity>() <= 0.1 * tau) tau *= 0.1;
+    if (phi.lpNorm<Eigen::Infinity>() <= 0.1 * tau) tau *= 0.1, residual(p, a, lambda, u, tau, phi);
   }
   if (best_residual < result.residual) lambda = best, result.residual = best_residual;
   result.solved = result.residual <= settings.velocity_tolerance;
