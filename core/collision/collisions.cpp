@@ -51,6 +51,8 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["direct_proximal_steps"] = direct_proximal;
   out["direct_friction_rounds"] = direct_rounds;
   out["direct_unsolved"] = direct_unsolved;
+  out["exact_starts"] = exact_starts;
+  out["projections_skipped"] = projections_skipped;
   out["coulomb_exact_starts"] = coulomb_exact_starts;
   out["coulomb_solves"] = coulomb_solves;
   out["coulomb_newton_steps"] = coulomb_newton_steps;

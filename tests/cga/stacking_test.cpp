@@ -9,5 +9,8 @@ using CgaStacking = StackingFamily<cga::Backend>;
 TEST_P(CgaStacking, ComesToRestWhereStaticsPutsIt) { check_case(); }
 INSTANTIATE_TEST_SUITE_P(Family, CgaStacking, ::testing::ValuesIn(stacking_indices()),
                          stacking_test_name);
+TEST(CgaStackingAtRest, ARestingColumnKeepsItsWarmStartsAndSkipsMostProjections) {
+  check_resting_column<cga::Backend>();
+}
 
 }  // namespace gacompare::testing

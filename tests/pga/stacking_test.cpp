@@ -9,5 +9,8 @@ using PgaStacking = StackingFamily<pga::Backend>;
 TEST_P(PgaStacking, ComesToRestWhereStaticsPutsIt) { check_case(); }
 INSTANTIATE_TEST_SUITE_P(Family, PgaStacking, ::testing::ValuesIn(stacking_indices()),
                          stacking_test_name);
+TEST(PgaStackingAtRest, ARestingColumnKeepsItsWarmStartsAndSkipsMostProjections) {
+  check_resting_column<pga::Backend>();
+}
 
 }  // namespace gacompare::testing

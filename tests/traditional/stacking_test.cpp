@@ -9,5 +9,8 @@ using TraditionalStacking = StackingFamily<traditional::Backend>;
 TEST_P(TraditionalStacking, ComesToRestWhereStaticsPutsIt) { check_case(); }
 INSTANTIATE_TEST_SUITE_P(Family, TraditionalStacking, ::testing::ValuesIn(stacking_indices()),
                          stacking_test_name);
+TEST(TraditionalStackingAtRest, ARestingColumnKeepsItsWarmStartsAndSkipsMostProjections) {
+  check_resting_column<traditional::Backend>();
+}
 
 }  // namespace gacompare::testing
