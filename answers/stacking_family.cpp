@@ -189,14 +189,14 @@ StackCase pyramid(ContactSolverMethod method, int layers, bool square, double mu
   // The square pyramid stays open: in one landing per backend Newton's method
   // (coulomb.hpp) stalls at 1.2–1.4 times the velocity tolerance (rows of a
   // face's corners carrying 2e-10 N s, parting at 1e-11 m/s), and the sweeps
-  // after it end on their cap. Its bottom layer also comes to rest held
-  // tilted by the layers above (by friction; ~1e-5 rad, up to 3e-6 m above
-  // its rest), which the family's "at or below its rest" answer counts as a
-  // failure; the frictionless pyramid cannot hold a tilt.
+  // after it end on their cap. Its centre cube is also sampled up to 3e-6 m
+  // above its rest: the friction displacement lifts a resting cube by
+  // ½|g|h² (4.9e-6 m) after a detection that found its contact shallower than
+  // that (docs/collision-response.md, the square pyramid with friction).
   if (mu > 0 && square)
     c.open = "in one landing per backend Newton's method stalls at 1.2 to 1.4 times the velocity tolerance and the "
-             "sweeps after it end on their cap; the bottom layer rests held tilted by friction, up to 3e-6 m above its "
-             "rest";
+             "sweeps after it end on their cap; the friction displacement lifts the centre cube up to 3e-6 m above its "
+             "rest, by more than the depth its contact was detected at";
   return c;
 }
 
