@@ -436,6 +436,13 @@ class ContactSolver {
                 const std::vector<char>& moving, double converged, const std::vector<char>& pull = {},
                 Eigen::SparseMatrix<double>* known = nullptr, double* left = nullptr) const {
       if (rows.empty()) return true;
+      // Without friction: a warm start already well within the tolerance
+      // (kKeepWarmStart) is kept. At rest it usually is, and the solve's
+      // factorisation is most of a resting stack's step. The check reads the
+      // rows' velocities with the warm start already in them (A λ + b), so
+      // it needs no Delassus matrix either.
+      if (frictions.empty() && pull.empty() && held_residual(rows, motion) <= kKeepWarmStart * converged)
+        return ++counters.exact_starts, true;
       bool solved = true;
       const std::vector<Line> lines = lines_of(rows, frictions);
       const auto n = static_cast<Eigen::Index>(lines.size()), nr = static_cast<Eigen::Index>(rows.size());
@@ -464,11 +471,6 @@ class ContactSolver {
       const contact::CoulombProblem c = coulomb ? coulomb_problem(p, nr, frictions) : contact::CoulombProblem{};
       const double held_residual = coulomb ? contact::coulomb_residual(c, held) : 0.0;
       if (coulomb && held_residual <= converged) return ++counters.coulomb_exact_starts, true;
-      // Without friction: a warm start already well within the tolerance
-      // (kKeepWarmStart) is kept too. At rest it usually is, and the solve's
-      // factorisation is most of a resting stack's step.
-      if (!coulomb && pull.empty() && contact::blcp_residual(p, held) <= kKeepWarmStart * converged)
-        return ++counters.exact_starts, true;
       contact::BlcpSettings how;
       how.velocity_tolerance = converged;
       // The lines fall into groups that share no moving body (a static body
@@ -511,6 +513,17 @@ class ContactSolver {
           f.lambda[d] = lambda[k];
         }
       return solved;
+    }
+    // The worst violation of the frictionless rows' conditions by the
+    // impulses they hold (blcp_residual's measure with lo = 0, hi = ∞): a row
+    // that pushes must not move, one that does not must not approach.
+    static double held_residual(const std::vector<Row>& rows, const Motions& motion) {
+      double worst = 0;
+      for (const auto& r : rows) {
+        const double w = normal_velocity(r, motion) - r.target;
+        worst = std::max(worst, r.lambda > 0 ? std::abs(w) : std::max(0.0, -w));
+      }
+      return worst;
     }
     // The Coulomb problem of the direct solve's lines (coulomb.hpp): its
     // normal rows first, each friction's two tangents after them.
