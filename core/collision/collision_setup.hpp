@@ -50,10 +50,13 @@ struct CollisionCounters {
   // sweeps each solve took: sweep_histogram[k] counts solves of 2^k to
   // 2^(k+1) − 1 sweeps (the last bucket: the cap).
   std::uint64_t solves = 0, direct_pivots = 0, direct_factorisations = 0, direct_proximal = 0, direct_rounds = 0, direct_unsolved = 0;
+  // At rest (contact_solver.hpp): position projections skipped as idle, and
+  // frictionless warm starts kept without a solve.
+  std::uint64_t projections_skipped = 0, exact_starts = 0;
   // With friction, the direct solve's Coulomb problem (coulomb.hpp): warm
   // starts already exact (no solve), solves the rounds left inexact and
   // Newton's method made exact, their Newton steps, and those it could not.
-  std::uint64_t projections_skipped = 0, exact_starts = 0, coulomb_exact_starts = 0, coulomb_solves = 0, coulomb_newton_steps = 0, coulomb_unsolved = 0;
+  std::uint64_t coulomb_exact_starts = 0, coulomb_solves = 0, coulomb_newton_steps = 0, coulomb_unsolved = 0;
   std::uint64_t projections_refused = 0;  // the direct solver's position projections dropped (contact_solver.hpp)
   std::array<std::uint64_t, 11> sweep_histogram{};
   // The velocity residual at each velocity solve's exit (m/s: the largest
