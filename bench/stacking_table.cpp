@@ -7,7 +7,7 @@
 // tests know to be open (StackCase::open) saying why. Markdown on stdout,
 // progress on stderr.
 //
-//   build/ci/bench/stacking_table [--filter TEXT] [--columns traditional,cga,pga,bullet,traditional-pgs,cga-pgs,pga-pgs]
+//   build/ci/bench/stacking_table [--filter TEXT] [--columns traditional,cga,pga,bullet,traditional-pgs,cga-pgs,pga-pgs,traditional-tested,cga-tested,pga-tested]
 //                                 [--duration SECONDS] [--restitution E] [--counters NAME,NAME,...]
 //
 // --duration shortens every case's run (the verdict still holds each sample
@@ -18,8 +18,10 @@
 //
 // Default columns: traditional, cga, pga, bullet. A column is a backend with the
 // family's default contact solver (direct),
-// a backend with projected Gauss–Seidel (NAME-pgs), or Bullet (its own
-// sequential impulses, 10 iterations, split impulse).
+// a backend with projected Gauss–Seidel (NAME-pgs), a backend testing every
+// pair at every detection (NAME-tested: the collisions effect's
+// reuse_contacts off), or Bullet (its own sequential impulses, 10
+// iterations, split impulse).
 #include "core/memory.hpp"
 #include "answers/stacking_family.hpp"
 #include "compare/runner.hpp"
@@ -37,7 +39,8 @@ using namespace gacompare;
 
 namespace {
 
-// A column is a backend, with "-pgs" for the Gauss–Seidel solver.
+// A column is a backend, with "-pgs" for the Gauss–Seidel solver or
+// "-tested" for every pair tested at every detection (no kept contacts).
 core::Run run(const std::string& column, const core::Scene& scene) {
   return compare::run_backend(scene, column.substr(0, column.find('-')));
 }
@@ -48,7 +51,7 @@ core::ContactSolverMethod method_of(const std::string& column) {
 
 int usage() {
   std::fprintf(stderr,
-               "usage: stacking_table [--filter TEXT] [--columns traditional,cga,pga,bullet,traditional-pgs,cga-pgs,pga-pgs] "
+               "usage: stacking_table [--filter TEXT] [--columns traditional,cga,pga,bullet,traditional-pgs,cga-pgs,pga-pgs,traditional-tested,cga-tested,pga-tested] "
                "[--duration SECONDS] [--restitution E] [--counters NAME,NAME,...]\n");
   return 2;
 }
@@ -80,7 +83,8 @@ int main(int argc, char** argv) {
     } else if (arg == "--counters") {
       shown = bench::comma_list(value);
     } else if (arg == "--columns") {
-      const auto list = bench::column_list(value, {"traditional", "cga", "pga", "bullet", "traditional-pgs", "cga-pgs", "pga-pgs"});
+      const auto list = bench::column_list(value, {"traditional", "cga", "pga", "bullet", "traditional-pgs", "cga-pgs", "pga-pgs",
+                                                      "traditional-tested", "cga-tested", "pga-tested"});
       if (!list) return usage();
       columns = *list;
     } else {
@@ -117,7 +121,10 @@ int main(int argc, char** argv) {
     for (const auto& b : base.scene.bodies) moving += !b.is_static;
     std::printf("| %s | %d |", base.name.c_str(), moving);
     for (const auto& column : columns) {
-      const core::StackCase& c = method_of(column) == core::ContactSolverMethod::pgs ? pgs[k] : direct[k];
+      core::StackCase c = method_of(column) == core::ContactSolverMethod::pgs ? pgs[k] : direct[k];
+      if (column.ends_with("-tested"))
+        for (auto& effect : c.scene.effects)
+          if (auto* collisions = std::get_if<core::Collisions>(&effect)) collisions->reuse_contacts = false;
       std::fprintf(stderr, "%s %s\n", c.name.c_str(), column.c_str());
       core::StackVerdict v;
       double seconds = 0;
@@ -132,6 +139,7 @@ int main(int argc, char** argv) {
       } catch (const Error& e) {
         v.pass = false, v.ratio = INFINITY, v.worst = std::string("refused: ") + e.what();
       }
+      if (!shown.empty()) std::fprintf(stderr, "  worst: %s\n", v.worst.c_str());
       passed[column] += v.pass;
       wall[column] += seconds;
       std::printf(" %s %.2g, %.3g s |", v.pass ? "pass" : "FAIL", v.ratio, seconds / c.scene.duration);

@@ -8,6 +8,7 @@
 // scanned, every edge pair tested. Instantiated by
 // tests/{traditional,cga}/narrowphase_test.cpp; `Backend` is a tag with Body.
 #include "answers/collision_cases.hpp"
+#include "core/collision/kept_contacts.hpp"
 #include "core/collision/narrowphase.hpp"
 #include "core/collision/separating_axis.hpp"
 #include "core/collision/shape.hpp"
@@ -390,9 +391,183 @@ TYPED_TEST_P(NarrowphaseCacheCases, FaceGapBoundsTheDistanceWhateverIsRemembered
   }
 }
 
+// Kept contacts (core/collision/kept_contacts.hpp) against the whole test at
+// the same poses. Pairs: boxes of seeded random sides resting face to face
+// 1e-5 of their size deep, offset sideways, turned about the normal and
+// tilted by up to 1e-4 rad (one in four level), and the degenerate cube pairs. Each pair's
+// contacts are kept at its pose, then asked again:
+//   - at the same pose, and with both bodies moved together by a rigid motion
+//     (the relative pose the same): the same points, normals, depths and
+//     separating-axis answer, to 1e-14 of the scale (the world's coordinates
+//     round the kept and the tested points differently, ~1e-16 of the 1 m
+//     the pair is moved by, a few times over);
+//   - with b moved along the normal (from 0.3 of the depth deeper to 0.3 of
+//     it apart): the same, and the depths the whole test's;
+//   - with b slid, or turned, by twice the bound: refused.
+// And a cube resting on one edge of its face (tilted so that its other
+// edge is 4e-6 of the scale higher): kept, then refused once b has come
+// down by that height, where the whole test finds the other edge's points.
+TYPED_TEST_P(NarrowphaseCacheCases, KeptContactsGiveTheWholeTestsAnswersWithinTheirBound) {
+  using Body = typename TypeParam::Body;
+  using Shape = typename Body::Shape;
+  struct Full {
+    PairContact sat;
+    std::vector<FeatureContact> c;
+    collision::SatHint hint;
+    collision::FaceChoice choice;
+  };
+  const auto full = [](const Placed& a, const Placed& b) {
+    Full f;
+    const Shape sa(a), sb(b);
+    f.sat = collision::narrowphase<Body>(sa, sb, Method::sat_then_manifold, &f.c, &f.hint, &f.choice);
+    return f;
+  };
+  // The kept answer against the whole test's, to `tol` (points as sets: the
+  // clipping's order is not kept).
+  const auto expect_near = [](const PairContact& ks, const std::vector<FeatureContact>& kc, const Full& f, double tol,
+                              const std::string& what) {
+    EXPECT_EQ(ks.intersect, f.sat.intersect) << what;
+    EXPECT_EQ(ks.feature, f.sat.feature) << what;
+    EXPECT_NEAR(ks.depth, f.sat.depth, tol) << what;
+    EXPECT_LE((ks.normal - f.sat.normal).norm(), 1e-14) << what;
+    ASSERT_EQ(kc.size(), f.c.size()) << what;
+    for (const FeatureContact& k : kc) {
+      const FeatureContact* near = &f.c[0];
+      for (const FeatureContact& c : f.c)
+        if ((c.point - k.point).norm() < (near->point - k.point).norm()) near = &c;
+      EXPECT_LE((near->point - k.point).norm(), tol) << what;
+      EXPECT_LE((near->normal - k.normal).norm(), 1e-14) << what;
+      EXPECT_NEAR(near->depth, k.depth, tol) << what;
+      EXPECT_EQ(near->feature, k.feature) << what;
+    }
+  };
+  // Two level faces tie: every axis near the normal (the faces', and edge
+  // pairs' of rounding's making) and every point of the overlap at one
+  // depth, so which the whole test picks, and which four points it keeps of
+  // more (two rectangles turned clip to up to eight), is rounding's, and a
+  // move changes it. Their depths are the same.
+  const auto same = [&](const collision::CollisionCase& c, const PairContact& ks,
+                        const std::vector<FeatureContact>& kc, const Full& f, const std::string& what) {
+    const double tol = 1e-14 * collision::pair_scale(*c.mesh_a, *c.mesh_b);
+    if (c.name.rfind("level", 0) != 0 && c.name.rfind("cubes", 0) != 0) return expect_near(ks, kc, f, tol, what);
+    EXPECT_NEAR(ks.depth, f.sat.depth, tol) << what;
+    ASSERT_EQ(kc.size(), f.c.size()) << what;
+    for (std::size_t m = 0; m < kc.size(); ++m) EXPECT_NEAR(kc[m].depth, f.c[m].depth, tol) << what;
+  };
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<collision::CollisionCase> cases;
+  for (int n = 0; n < 40; ++n) {
+    const Vec3 sa(0.2 + 0.1 * u(rng), 0.2 + 0.1 * u(rng), 0.2 + 0.1 * u(rng));
+    const Vec3 sb(0.2 + 0.1 * u(rng), 0.2 + 0.1 * u(rng), 0.2 + 0.1 * u(rng));
+    const auto ma = std::make_shared<const core::Mesh>(core::make_box(sa));
+    const auto mb = std::make_shared<const core::Mesh>(core::make_box(sb));
+    const double tilt = n % 4 == 0 ? 0.0 : 1e-4 * u(rng);
+    const Mat3 r = Mat3(Eigen::AngleAxisd(std::numbers::pi * u(rng), Vec3::UnitZ())) *
+                   Mat3(Eigen::AngleAxisd(tilt, Vec3(u(rng), u(rng), 0).normalized()));
+    const double scale = collision::pair_scale(*ma, *mb);
+    // b lowered onto a until the pair is 1e-5 of the scale deep (bisection:
+    // where b overhangs a, its lowest corner is not the one that touches).
+    Pose pb{r, Vec3(0.05 * u(rng), 0.05 * u(rng), 0)};
+    double lo = -1, hi = 1;
+    for (int it = 0; it < 80; ++it) {
+      pb.position.z() = 0.5 * (lo + hi);
+      const double depth = collision::narrowphase<Body>(Placed{ma.get(), {}}, Placed{mb.get(), pb}, Method::manifold).depth;
+      (depth > 1e-5 * scale ? lo : hi) = pb.position.z();
+    }
+    cases.push_back({(tilt == 0 ? "level boxes " : "boxes ") + std::to_string(n), ma, mb, Pose{}, pb});
+  }
+  for (auto& c : degenerate_pairs(1e-5))
+    if (c.name.rfind("cubes", 0) == 0) cases.push_back(std::move(c));
+  const Mat3 carry(Eigen::AngleAxisd(0.7, Vec3(1, -2, 0.5).normalized()));
+  const Vec3 shift(0.9, -0.4, 1.3);
+  int kept = 0, moved = 0, refused = 0;
+  for (const auto& c : cases) {
+    const double scale = collision::pair_scale(*c.mesh_a, *c.mesh_b);
+    const double band = collision::kTouchingBand * scale;
+    const Full f = full(c.a(), c.b());
+    collision::KeptContacts k;
+    if (!collision::keep(k, *c.mesh_a, *c.mesh_b, c.pose_a, c.pose_b, f.sat, f.hint, f.choice, f.c)) continue;
+    ++kept;
+    const auto ask = [&](const Pose& pa, const Pose& pb, std::vector<FeatureContact>& out, PairContact& sat) {
+      return collision::refresh(k, *c.mesh_a, *c.mesh_b, pa, pb, band, sat, out);
+    };
+    {
+      std::vector<FeatureContact> out;
+      PairContact sat;
+      ASSERT_TRUE(ask(c.pose_a, c.pose_b, out, sat)) << c.name;
+      same(c, sat, out, f, c.name + " at its pose");
+      // Both carried by one rigid motion.
+      const Pose pa{carry * c.pose_a.rotation, carry * c.pose_a.position + shift};
+      const Pose pb{carry * c.pose_b.rotation, carry * c.pose_b.position + shift};
+      out.clear();
+      ASSERT_TRUE(ask(pa, pb, out, sat)) << c.name;
+      same(c, sat, out, full({c.mesh_a.get(), pa}, {c.mesh_b.get(), pb}), c.name + " carried");
+    }
+    const Vec3 n = f.sat.normal;  // a towards b
+    for (const double along : {-3e-6, -1e-6, 1e-6, 3e-6}) {
+      Pose pb = c.pose_b;
+      pb.position += along * scale * n;
+      std::vector<FeatureContact> out;
+      PairContact sat;
+      const Full g = full(c.a(), {c.mesh_b.get(), pb});
+      if (!ask(c.pose_a, pb, out, sat)) {
+        // Only where a point has risen above the band, a left-out one could
+        // come down into it, or a choice of faces could change.
+        EXPECT_TRUE(along > 0 || along * scale + k.left_out <= 0 ||
+                    k.faces + std::abs(along) * scale * k.faces_spread >= 0 ||
+                    k.edge - std::abs(along) * scale * k.edge_spread <= 0)
+            << c.name << " along " << along;
+        continue;
+      }
+      ++moved;
+      same(c, sat, out, g, c.name + " along " + std::to_string(along));
+    }
+    const Vec3 side = n.unitOrthogonal();
+    for (const Pose& pb : {Pose{c.pose_b.rotation, c.pose_b.position + 2 * collision::kKeepSlide * scale * side},
+                           Pose{Mat3(Eigen::AngleAxisd(2 * collision::kKeepSlide, n)) * c.pose_b.rotation,
+                                c.pose_b.position}}) {
+      std::vector<FeatureContact> out;
+      PairContact sat;
+      EXPECT_FALSE(ask(c.pose_a, pb, out, sat)) << c.name;
+      EXPECT_TRUE(out.empty()) << c.name;
+      ++refused;
+    }
+  }
+  // Most random boxes (some rest on an edge of a, or an edge pair ties
+  // with their faces: not kept) and every degenerate cube pair.
+  EXPECT_GT(kept, 40);
+  EXPECT_GT(moved, 3 * kept);
+  // A cube resting on one edge: its far edge 4e-6 of the scale above a's face.
+  const auto cube = std::make_shared<const core::Mesh>(core::make_box({0.2, 0.2, 0.2}));
+  const double scale = cube->size(), band = collision::kTouchingBand * scale, lift = 4e-6 * scale;
+  const Mat3 r(Eigen::AngleAxisd(lift / 0.2, Vec3::UnitY()));
+  double low = INFINITY;
+  for (const Vec3& x : cube->vertices()) low = std::min(low, (r * x).z());
+  const Pose pa{}, pb{r, Vec3(0, 0, 0.1 - low - 1e-9 * scale)};
+  const Full f = full({cube.get(), pa}, {cube.get(), pb});
+  ASSERT_EQ(f.c.size(), 2u);
+  collision::KeptContacts k;
+  ASSERT_TRUE(collision::keep(k, *cube, *cube, pa, pb, f.sat, f.hint, f.choice, f.c));
+  EXPECT_NEAR(k.left_out, lift, 1e-3 * lift);  // the far edge's height above the band
+  for (const double down : {0.5, 0.99, 1.01}) {  // times the lift
+    Pose q = pb;
+    q.position.z() -= down * lift;
+    std::vector<FeatureContact> out;
+    PairContact sat;
+    const bool ok = collision::refresh(k, *cube, *cube, pa, q, band, sat, out);
+    const Full g = full({cube.get(), pa}, {cube.get(), q});
+    EXPECT_EQ(ok, down < 1) << "down " << down;
+    if (ok) expect_near(sat, out, g, 1e-14 * scale, "on its edge, down " + std::to_string(down));
+    else EXPECT_EQ(g.c.size(), 4u) << "down " << down;  // the far edge came into the band
+  }
+  EXPECT_GT(refused, 0);
+}
+
 REGISTER_TYPED_TEST_SUITE_P(NarrowphaseCacheCases, TouchingPairsHaveTheirContacts, SharedShapesGiveTheAnswersOfRebuiltOnes,
                             RememberedAxesGiveTheAnswersOfColdOnes, HillClimbingFindsTheScansSupport,
                             WalkingTheGaussMapMeetsEveryCrossing, ShapesMeasureDistancesInMetresAtEveryScale,
-                            FaceGapBoundsTheDistanceWhateverIsRemembered);
+                            FaceGapBoundsTheDistanceWhateverIsRemembered,
+                            KeptContactsGiveTheWholeTestsAnswersWithinTheirBound);
 
 }  // namespace gacompare::testing

@@ -1,11 +1,17 @@
 #!/usr/bin/env python3
 """What the narrowphase's reuse saves in a whole run: the
-scale scenes (bench/scale/box_scene.py) with the collisions effect's `reuse` on
-(each body's narrowphase geometry built once per detection, each pair's
-separating axis remembered) and off (both bodies rebuilt for every pair,
-nothing remembered: the same run, tested), through traditional and cga.
+scale scenes (bench/scale/box_scene.py) with one of the collisions effect's
+settings on and off, through traditional and cga:
+  --setting reuse (the default): each body's narrowphase geometry built once
+    per detection, each pair's separating axis remembered; off, both bodies
+    rebuilt for every pair and nothing remembered (the same run, tested);
+  --setting reuse_contacts: a pair's face manifold kept between detections
+    while its relative pose stays within a bound; off, every pair tested
+    every time (not the same run: kept points may sit up to the bound
+    sideways of the tested ones).
 
   bench/scale/reuse.py --binary build/release/compare/gacompare --sizes 125,1000 --repeat 3
+  bench/scale/reuse.py --binary build/release/compare/gacompare --sizes 1000 --setting reuse_contacts
 
 Each size and setting is one `gacompare compare` of the two backends (their
 order alternating in each repeat); the settings alternate too (on, off, on,
@@ -41,9 +47,11 @@ def main():
     ap = runs.parser(__doc__)
     ap.add_argument("--duration", type=float, default=0.2)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--setting", choices=["reuse", "reuse_contacts"], default="reuse")
+    setting = ap.parse_known_args()[0].setting  # the table's header names it
     args, sizes, tmp = runs.start(
-        ap, [("N", True), ("backend", False), ("reuse", False), ("narrowphase s", True), ("whole run s", True),
-             ("narrowphase pairs", True), ("shapes built", True), ("axes kept", True)],
+        ap, [("N", True), ("backend", False), (setting, False), ("narrowphase s", True), ("whole run s", True),
+             ("narrowphase pairs", True), ("shapes built", True), ("axes kept", True), ("contacts kept", True)],
         " (seconds per simulated second, median (min–max) of the repeats; counters of one run)")
     for n in sizes:
         data = {}
@@ -52,7 +60,7 @@ def main():
                 scene = box_scene.scene(n, args.seed, args.duration, args.duration / 4)
                 for e in scene["effects"]:
                     if e["type"] == "collisions":
-                        e["reuse"] = reuse
+                        e[args.setting] = reuse
                 got = run(args, scene, os.path.join(tmp, f"box_{n}_{reuse}_{rep}"))
                 for backend, r in got.items():
                     data.setdefault((backend, reuse), []).append(r)
@@ -62,7 +70,8 @@ def main():
                 c = rs[0]["counters"]
                 print(f"| {n} | {backend} | {'on' if reuse else 'off'} | {cell([r['narrowphase'] for r in rs])} | "
                       f"{cell([r['wall'] for r in rs])} | {c.get('narrowphase_pairs', 0)} | "
-                      f"{c.get('narrowphase_shapes', 0)} | {c.get('narrowphase_axes_kept', 0)} |")
+                      f"{c.get('narrowphase_shapes', 0)} | {c.get('narrowphase_axes_kept', 0)} | "
+                      f"{c.get('narrowphase_contacts_kept', 0)} |")
     return 0
 
 

@@ -40,6 +40,7 @@ struct CollisionCounters {
   std::uint64_t links_apart = 0;  // candidate pairs unlinked: apart by more than their reach (collision_step.hpp)
   std::uint64_t links_face_tested = 0;  // of the pairs apart, those whose link every face normal decided
   std::uint64_t narrowphase_shapes = 0, narrowphase_axes_kept = 0;  // bodies' geometry built; pairs their last axis decided
+  std::uint64_t contacts_kept = 0;  // pairs whose kept contacts were measured again, not tested (kept_contacts.hpp)
   // Friction: the contacts given friction rows, those whose
   // friction ended on the cone (sliding) and the friction rows warm started.
   std::uint64_t friction_contacts = 0, sliding_contacts = 0, friction_warm_started = 0;

@@ -42,6 +42,7 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["largest_island"] = largest_island;
   out["narrowphase_shapes"] = narrowphase_shapes;
   out["narrowphase_axes_kept"] = narrowphase_axes_kept;
+  out["narrowphase_contacts_kept"] = contacts_kept;
   out["friction_contacts"] = friction_contacts;
   out["sliding_contacts"] = sliding_contacts;
   out["friction_warm_started"] = friction_warm_started;

@@ -19,6 +19,7 @@
 #include "core/collision/collision_setup.hpp"
 #include "core/contact/contact_solver.hpp"
 #include "core/error.hpp"
+#include "core/collision/kept_contacts.hpp"
 #include "core/collision/narrowphase.hpp"
 #include "core/collision/pair_memory.hpp"
 #include "core/collision/sleep.hpp"
@@ -73,6 +74,7 @@ struct CollisionState {
   std::vector<std::uint64_t> placed_in;  // the detection each shape was placed in
   std::uint64_t detection = 0;
   collision::PairMemory<collision::SatHint> hints;  // each pair's last axis
+  collision::PairMemory<collision::KeptContacts> kept;  // pairs in contact: their kept manifolds
   ContactSolver<Bodies> contact;  // the response stage, with its warm-start cache
   SleepState sleep;               // empty unless the scene asks for sleeping
 };

@@ -45,13 +45,39 @@
 #include "core/collision/collision.hpp"
 #include "core/collision/separating_axis.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace gacompare::collision {
 
 inline constexpr int kMaxManifoldPoints = 4;
 inline constexpr double kFacePreference = 0.05;
+
+// What a manifold's choices were, for a pair whose contacts are kept between
+// detections (core/collision/kept_contacts.hpp): whether it came from a face,
+// which face, how near its choices were to changing, and how far above the
+// band the lowest clipped point it left out was (both in metres).
+struct FaceChoice {
+  bool made = false;
+  bool ref_is_a = true;
+  int face = -1;
+  // The two choices as numbers whose signs make them (in metres): a's face
+  // or b's (b's if `faces` > 0), and a face or an edge pair (the face if
+  // `edge` > 0; +∞ without an edge pair); and how far apart the normals each
+  // compares are (what a translation of the bodies changes the number by,
+  // per metre).
+  double faces = 0, faces_spread = 0;
+  double edge = std::numeric_limits<double>::infinity(), edge_spread = 0;
+  double left_out = std::numeric_limits<double>::infinity();
+  // The contacts' points in the pair's frame (core/collision/narrowphase.hpp:
+  // about `origin`), before they are moved to the world's: there they keep
+  // the digits that the world's coordinates round off.
+  Vec3 origin = Vec3::Zero();
+  std::array<Vec3, kMaxManifoldPoints> local{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+};
 
 namespace detail {
 
@@ -96,8 +122,11 @@ inline void reduce(std::vector<FeatureContact>& c, const Vec3& n) {
 }
 
 // Face k of body r is the reference; `r_is_a` says which of the pair it is.
+// `left_out` (optional): lowered to the height above the band of each clipped
+// point left out for being above it.
 template <class Body>
-void face_contacts(const Body& r, const Body& i, int k, bool r_is_a, double band, std::vector<FeatureContact>& out) {
+void face_contacts(const Body& r, const Body& i, int k, bool r_is_a, double band, std::vector<FeatureContact>& out,
+                   double* left_out = nullptr) {
   using Point = typename Body::Point;
   const Vec3 n = r.normal(k);
   // The incident face: the other body's face most opposed to n.
@@ -120,7 +149,10 @@ void face_contacts(const Body& r, const Body& i, int k, bool r_is_a, double band
   const auto reference = r.face_plane(k);
   for (const Point& p : poly) {
     const double s = Body::distance(reference, p);
-    if (s > band) continue;
+    if (s > band) {
+      if (left_out) *left_out = std::min(*left_out, s - band);
+      continue;
+    }
     const Vec3 x = Body::position(p) - (0.5 * s) * n;
     bool duplicate = false;  // clipping can return a corner twice (an incident vertex on a side plane)
     for (std::size_t c = first; c < out.size() && !duplicate; ++c) duplicate = (out[c].point - x).norm() <= band;
@@ -137,12 +169,26 @@ void face_contacts(const Body& r, const Body& i, int k, bool r_is_a, double band
 // The manifold of a pair in contact (the separating-axis test ran to the end:
 // `axes` is complete), in the Bodies' frame. `band` is the touching band in
 // length units: points up to that far above the reference face still count.
+// `choice` (optional) receives what was chosen and how near it was to changing.
 template <class Body>
 void manifold_contacts(const Body& a, const Body& b, const SatAxes& axes, double band,
-                       std::vector<FeatureContact>& out) {
+                       std::vector<FeatureContact>& out, FaceChoice* choice = nullptr) {
   const auto slack = [&](double gap) { return kFacePreference * std::abs(gap) + band; };
   const bool use_b = axes.face_b.gap > axes.face_a.gap + slack(axes.face_a.gap);
   const SatAxes::Axis& face = use_b ? axes.face_b : axes.face_a;
+  if (choice) {
+    choice->made = !(axes.edge.i >= 0 && axes.edge.gap > face.gap + slack(face.gap)) &&
+                   std::isfinite(axes.face_a.gap) && std::isfinite(axes.face_b.gap);
+    choice->ref_is_a = !use_b;
+    choice->face = use_b ? face.j : face.i;
+    choice->faces = axes.face_b.gap - (axes.face_a.gap + slack(axes.face_a.gap));
+    choice->faces_spread = (axes.face_a.normal - axes.face_b.normal).norm();
+    if (axes.edge.i >= 0) {
+      choice->edge = face.gap + slack(face.gap) - axes.edge.gap;
+      choice->edge_spread = (axes.edge.normal - face.normal).norm();
+    }
+  }
+  double* left_out = choice ? &choice->left_out : nullptr;
   if (axes.edge.i >= 0 && axes.edge.gap > face.gap + slack(face.gap)) {
     const auto& ea = a.mesh().edges()[axes.edge.i];
     const auto& eb = b.mesh().edges()[axes.edge.j];
@@ -151,8 +197,8 @@ void manifold_contacts(const Body& a, const Body& b, const SatAxes& axes, double
     out.push_back({x, axes.edge.normal, -axes.edge.gap, Feature::edge_edge});
     return;
   }
-  if (use_b) detail::face_contacts(b, a, face.j, false, band, out);
-  else detail::face_contacts(a, b, face.i, true, band, out);
+  if (use_b) detail::face_contacts(b, a, face.j, false, band, out, left_out);
+  else detail::face_contacts(a, b, face.i, true, band, out, left_out);
 }
 
 }  // namespace gacompare::collision

@@ -162,10 +162,13 @@ void report_contacts(const Body& a, const Body& b, std::vector<FeatureContact>& 
 // coordinates. `contacts` (optional) receives the feature contacts of the
 // method; `hint` (optional) the pair's axis from its last detection, tried
 // first by the methods that stop at a separating axis, and the axis of this
-// answer afterwards (core/collision/separating_axis.hpp).
+// answer afterwards (core/collision/separating_axis.hpp); `choice` (optional)
+// what a manifold's face choice was (core/collision/kept_contacts.hpp), left
+// unmade for a round pair, an edge contact or another method.
 template <class Body>
 PairContact narrowphase(const typename Body::Shape& sa, const typename Body::Shape& sb, Method method,
-                        std::vector<FeatureContact>* contacts = nullptr, SatHint* hint = nullptr) {
+                        std::vector<FeatureContact>* contacts = nullptr, SatHint* hint = nullptr,
+                        FaceChoice* choice = nullptr) {
   const Vec3 origin = local_origin(sa.position(), sb.position());
   const Body A(sa, sa.position() - origin), B(sb, sb.position() - origin);
   const double band = kTouchingBand * pair_scale(sa.mesh(), sb.mesh());
@@ -194,7 +197,13 @@ PairContact narrowphase(const typename Body::Shape& sa, const typename Body::Sha
       std::vector<FeatureContact> local;
       std::vector<FeatureContact>& found = contacts ? *contacts : local;
       const std::size_t first = found.size();
-      manifold_contacts(A, B, axes, band, found);
+      manifold_contacts(A, B, axes, band, found, choice);
+      if (choice && choice->made && found.size() - first <= choice->local.size()) {
+        choice->origin = origin;
+        for (std::size_t i = first; i < found.size(); ++i) choice->local[i - first] = found[i].point;
+      } else if (choice) {
+        choice->made = false;
+      }
       for (std::size_t i = first; i < found.size(); ++i) found[i].point += origin;
     }
     result.contact += origin;

@@ -20,23 +20,30 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   const auto method = setup.settings.method == ContactMethod::report ? collision::Method::sat_then_report
                                                                      : collision::Method::sat_then_manifold;
   const bool reuse = setup.settings.reuse;
+  // Kept contacts (core/collision/kept_contacts.hpp) for the manifold method.
+  const bool keep = setup.settings.reuse_contacts && method == collision::Method::sat_then_manifold;
   ++state.detection;
-  if (group.data() == setup.all_bodies.data()) state.hints.next();  // the world's detection: a new round of pairs
+  if (group.data() == setup.all_bodies.data()) state.hints.next(), state.kept.next();  // a new round of pairs
   // Each pair gets a slot of its own, so that the pairs can be tested on the
   // run's threads and come out the same for any number of them
   // (core/parallel.hpp): first, on this thread, the slots, the bodies' shapes
-  // (each placed once, in parallel) and the pairs' remembered axes; then the
-  // tests in parallel; then, in pair order, the hits, the links apart, the
-  // remembered axes and the counters.
+  // (each placed once, in parallel) and the pairs' remembered axes, and the
+  // kept contacts of pairs whose relative pose has stayed within their bound
+  // measured again (core/collision/kept_contacts.hpp: those pairs are not
+  // tested, and their bodies not placed for them); then the tests in
+  // parallel; then, in pair order, the hits, the links apart, the remembered
+  // axes, the contacts kept and the counters.
   struct Slot {
     PairHit h;
     collision::SatHint hint;
-    bool apart = false;
+    collision::FaceChoice choice;
+    bool apart = false, kept = false;
     std::uint64_t face_tested = 0, shapes = 0;
   };
   std::vector<Slot> slots;
   slots.reserve(pairs.size());
   std::vector<int> to_place;  // group indices whose world body is placed in this detection
+  std::size_t tested = 0;     // the slots tested (the rest had their kept contacts measured again)
   if (reuse && state.shapes.size() != setup.meshes.size())
     state.shapes.resize(setup.meshes.size()), state.placed_in.assign(setup.meshes.size(), 0);
   for (const auto& pair : pairs) {
@@ -45,13 +52,23 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
     if (group[i] > group[j]) std::swap(i, j);  // a < b in the world: every group sees a pair the same way
     ++state.counters.narrowphase_pairs;
     if (group.data() != setup.all_bodies.data()) ++state.counters.island_narrowphase_pairs;
-    slots.push_back({PairHit{i, j, {}, {}}, {}});
+    slots.push_back({PairHit{i, j, {}, {}}, {}, {}});
+    if (keep)
+      if (const auto* k = state.kept.find(group[i], group[j]);
+          k && collision::refresh(*k, *setup.meshes[group[i]], *setup.meshes[group[j]], pose[i], pose[j],
+                                  collision::kTouchingBand *
+                                      collision::pair_scale(*setup.meshes[group[i]], *setup.meshes[group[j]]),
+                                  slots.back().h.sat, slots.back().h.features)) {
+        slots.back().kept = true;
+        continue;
+      }
+    ++tested;
     if (!reuse) continue;
     for (const int k : {i, j})
       if (state.placed_in[group[k]] != state.detection) state.placed_in[group[k]] = state.detection, to_place.push_back(k);
     slots.back().hint = state.hints.at(group[i], group[j]);
   }
-  state.counters.narrowphase_shapes += to_place.size() + (reuse ? 0 : 2 * slots.size());
+  state.counters.narrowphase_shapes += to_place.size() + (reuse ? 0 : 2 * tested);
   // A shape builds its edges (and, for the report's detector, its prepared
   // triangles) on first use; on more than one thread several pairs may ask
   // at once, so they are built here, with the placing, instead (the same
@@ -72,13 +89,17 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
       slots.size(),
       [&](std::size_t u) {
         Slot& s = slots[u];
+        if (s.kept) return;
         PairHit& h = s.h;
+        collision::FaceChoice* choice = keep ? &s.choice : nullptr;
         if (reuse) {
           h.sat = collision::narrowphase<NarrowBody>(state.shapes[group[h.a]], state.shapes[group[h.b]], method,
-                                                     &h.features, &s.hint);
+                                                     &h.features, &s.hint, choice);
         } else {
-          h.sat = collision::narrowphase<NarrowBody>(placed(pose, group, h.a), placed(pose, group, h.b), method,
-                                                     &h.features);
+          // The shapes placed for this pair alone; the hint only written (an
+          // empty one is read as none), for the kept contacts.
+          const typename NarrowBody::Shape sa(placed(pose, group, h.a)), sb(placed(pose, group, h.b));
+          h.sat = collision::narrowphase<NarrowBody>(sa, sb, method, &h.features, keep ? &s.hint : nullptr, choice);
         }
         // A pair within the touching band is in contact too (it has contacts):
         // its yes/no is rounding's (core/collision/collision.hpp), and a box resting
@@ -90,7 +111,18 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   for (Slot& s : slots) {
     state.counters.links_face_tested += s.face_tested;
     state.counters.narrowphase_shapes += s.shapes;
-    if (reuse) {
+    if (s.kept) {
+      ++state.counters.contacts_kept;
+    } else if (keep) {
+      const int wa = group[s.h.a], wb = group[s.h.b];
+      if (s.choice.made && !s.h.features.empty()) {
+        collision::keep(state.kept.at(wa, wb), *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a], pose[s.h.b], s.h.sat,
+                        s.hint, s.choice, s.h.features);
+      } else if (auto* k = state.kept.find(wa, wb)) {
+        k->valid = false;
+      }
+    }
+    if (reuse && !s.kept) {
       state.counters.narrowphase_axes_kept += s.hint.kept;
       state.hints.at(group[s.h.a], group[s.h.b]) = s.hint;
     }

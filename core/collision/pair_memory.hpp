@@ -48,6 +48,21 @@ class PairMemory {
     ++count_;
     return slots_[at].value;
   }
+  // The pair (i, j)'s value if a detection of the last round or of this one
+  // met it, else nullptr; adds nothing. A pair found counts as met in this
+  // round. The pointer holds until the next at() or next().
+  T* find(int i, int j) {
+    if (slots_.empty()) return nullptr;
+    const std::uint64_t k = key(i, j);
+    for (std::size_t at = home(k); slots_[at].used; at = (at + 1) & mask_) {
+      Slot& s = slots_[at];
+      if (s.key != k) continue;
+      if (!live(s)) return nullptr;
+      s.round = round_;
+      return &s.value;
+    }
+    return nullptr;
+  }
   // The pairs a detection of the last round or of this one met.
   std::size_t size() const {
     std::size_t n = 0;

@@ -579,9 +579,9 @@ class Loader {
       });
       return a;
     }
-    static constexpr Keys<11> keys = {"type",           "restitution",   "penetration_tolerance", "step",
+    static constexpr Keys<12> keys = {"type",           "restitution",   "penetration_tolerance", "step",
                                       "time_of_impact", "impact_motion", "method",                "broadphase",
-                                      "reuse",          "contact_solver", "sleep"};
+                                      "reuse",          "reuse_contacts", "contact_solver",       "sleep"};
     static constexpr Keys<2> sleep_keys = {"speed", "time"};
     Obj o(v, keys);
     Collisions c;
@@ -622,6 +622,7 @@ class Loader {
     if (auto x = o.opt("restitution")) c.restitution = number(*x, Range::unit);
     if (auto x = o.opt("penetration_tolerance")) c.penetration_tolerance = number(*x, Range::positive);
     if (auto x = o.opt("reuse")) c.reuse = boolean(*x);
+    if (auto x = o.opt("reuse_contacts")) c.reuse_contacts = boolean(*x);
     if (auto x = o.opt("sleep")) {
       const Obj so(*x, sleep_keys, "an object {\"speed\": m/s, \"time\": s}");
       c.sleep.on = true;

@@ -115,6 +115,10 @@ struct Collisions {
   // bodies for every pair and remembers nothing: the same run, slower (for
   // tests and benchmarks).
   bool reuse = true;
+  // A pair's contact manifold kept between detections while the pair's
+  // relative pose stays within a bound, its depths measured again
+  // (core/collision/kept_contacts.hpp); false tests every pair every time.
+  bool reuse_contacts = true;
   Sleep sleep{};
 };
 // Forces applied at points of bodies (§2.3.1: L̇ = τ): each pushes body `body` at

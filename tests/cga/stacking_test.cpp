@@ -12,5 +12,8 @@ INSTANTIATE_TEST_SUITE_P(Family, CgaStacking, ::testing::ValuesIn(stacking_indic
 TEST(CgaStackingAtRest, ARestingColumnKeepsItsWarmStartsAndSkipsMostProjections) {
   check_resting_column<cga::Backend>();
 }
+TEST(CgaStackingAtRest, AColumnsKeptContactsGiveWhatTestingEveryPairGives) {
+  check_column_kept_contacts<cga::Backend>();
+}
 
 }  // namespace gacompare::testing

@@ -12,5 +12,8 @@ INSTANTIATE_TEST_SUITE_P(Family, PgaStacking, ::testing::ValuesIn(stacking_indic
 TEST(PgaStackingAtRest, ARestingColumnKeepsItsWarmStartsAndSkipsMostProjections) {
   check_resting_column<pga::Backend>();
 }
+TEST(PgaStackingAtRest, AColumnsKeptContactsGiveWhatTestingEveryPairGives) {
+  check_column_kept_contacts<pga::Backend>();
+}
 
 }  // namespace gacompare::testing

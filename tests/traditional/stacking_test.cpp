@@ -12,5 +12,8 @@ INSTANTIATE_TEST_SUITE_P(Family, TraditionalStacking, ::testing::ValuesIn(stacki
 TEST(TraditionalStackingAtRest, ARestingColumnKeepsItsWarmStartsAndSkipsMostProjections) {
   check_resting_column<traditional::Backend>();
 }
+TEST(TraditionalStackingAtRest, AColumnsKeptContactsGiveWhatTestingEveryPairGives) {
+  check_column_kept_contacts<traditional::Backend>();
+}
 
 }  // namespace gacompare::testing

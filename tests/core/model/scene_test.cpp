@@ -194,6 +194,7 @@ TEST(SceneLoad, OptionalKeysTakeTheirDefaults) {
   EXPECT_EQ(s.find_effect<Collisions>()->restitution, Collisions{}.restitution);
   EXPECT_EQ(s.find_effect<Collisions>()->broadphase, Collisions{}.broadphase);
   EXPECT_TRUE(s.find_effect<Collisions>()->reuse);
+  EXPECT_TRUE(s.find_effect<Collisions>()->reuse_contacts);
   EXPECT_FALSE(s.find_effect<Collisions>()->sleep.on);
   EXPECT_TRUE(s.particles.empty());
   EXPECT_TRUE(s.constraints.empty());
@@ -429,6 +430,9 @@ std::vector<BadCase> bad_cases() {
        set("/effects/1/penetration_tolerance", 0),
        {": /effects/1/penetration_tolerance: expected a number > 0, got 0"}},
       {"ReuseNotBool", set("/effects/1/reuse", "no"), {": /effects/1/reuse: expected true or false, got \"no\""}},
+      {"ReuseContactsNotBool",
+       set("/effects/1/reuse_contacts", 1),
+       {": /effects/1/reuse_contacts: expected true or false, got 1"}},
       {"SleepNotObject",
        set("/effects/1/sleep", true),
        {": /effects/1/sleep: expected an object {\"speed\": m/s, \"time\": s}, got true"}},
