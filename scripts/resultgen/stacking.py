@@ -56,6 +56,10 @@ def generate(ctx):
     pgs_args = [ctx.tool("bench", "stacking_table"), "--columns", "traditional,traditional-pgs", "--filter",
                 "ratio" if ctx.quick else "column"]
     pgs = ctx.run(pgs_args)
+    # Kept contacts against every pair tested, where stacks rest longest.
+    kept = "\n\n".join(strip_command_line(ctx.run([ctx.tool("bench", "stacking_table"), "--columns",
+                                                  "traditional,traditional-tested", "--filter", f]))
+                      for f in (("ratio/heavy",) if ctx.quick else ("column/cubes", "pyramid/wall")))
     # Stacks at scale: square pyramids of up to 385 cubes, landing and resting.
     layers = "3,5" if ctx.quick else "3,5,10"
     pyramids = strip_command_line(ctx.run(["python3", "bench/scale/pyramids.py", "--binary", ctx.gacompare,
@@ -63,5 +67,6 @@ def generate(ctx):
     headline = [{"finding": "Stacks, pyramids and mass ratios held to their statics for 10 s",
                  "value": ", ".join(f"{c} {n[0]}/{n[1]}" for c, n in counts.items()),
                  "anchor": "#the-family"}] + cost_against_bullet(table)
-    return {"blocks": {"table": strip_command_line(table), "pgs": strip_command_line(pgs), "pyramids": pyramids},
+    return {"blocks": {"table": strip_command_line(table), "pgs": strip_command_line(pgs), "kept": kept,
+                       "pyramids": pyramids},
             "headline": headline}
