@@ -39,7 +39,9 @@ inline void print_tally(const std::vector<std::string>& columns, const std::map<
     std::printf(" %s %d/%d (%.1f s of runs);", c.c_str(), p == passed.end() ? 0 : p->second, cases,
                 w == wall.end() ? 0.0 : w->second);
   }
-  std::printf("\n\nWhy each failure failed (%s):\n\n", why);
+  std::printf("\n");
+  if (failures.empty()) return;
+  std::printf("\nWhy each failure failed (%s):\n\n", why);
   for (const auto& f : failures) std::printf("- %s\n", f.c_str());
 }
 
