@@ -80,6 +80,11 @@ struct KeptContacts {
   double left_out = 0;
 };
 
+// b's pose in a's frame: what the bound is measured on.
+inline Pose relative_pose(const Pose& a, const Pose& b) {
+  return {a.rotation.transpose() * b.rotation, a.rotation.transpose() * (b.position - a.position)};
+}
+
 // Keeps a pair's contacts found by the whole narrowphase at poses pa, pb (the
 // answer `sat`, its axis `hint`, the manifold's `choice` and `features`, world
 // coordinates). False, and nothing kept, for anything but a face manifold of
@@ -120,8 +125,9 @@ inline bool keep(KeptContacts& k, const Mesh& ma, const Mesh& mb, const Pose& pa
   k.count = static_cast<int>(features.size());
   k.ref_is_a = choice.ref_is_a;
   k.sat_on_a = on_a;
-  k.rotation = pa.rotation.transpose() * pb.rotation;
-  k.offset = pa.rotation.transpose() * (pb.position - pa.position);
+  const Pose rel = relative_pose(pa, pb);
+  k.rotation = rel.rotation;
+  k.offset = rel.position;
   k.normal = ref_mesh.planes()[static_cast<std::size_t>(choice.face)].normal;
   k.plane = ref_mesh.planes()[static_cast<std::size_t>(choice.face)].offset;
   k.sat_normal = sat_mesh.planes()[static_cast<std::size_t>(sat_face)].normal;
@@ -141,8 +147,9 @@ inline bool refresh(const KeptContacts& k, const Mesh& ma, const Mesh& mb, const
                     double band, PairContact& sat, std::vector<FeatureContact>& out) {
   if (!k.valid) return false;
   const double size = std::max(ma.size(), mb.size());
-  const Mat3 rotation = pa.rotation.transpose() * pb.rotation;
-  const Vec3 dt = pa.rotation.transpose() * (pb.position - pa.position) - k.offset;
+  const Pose rel = relative_pose(pa, pb);
+  const Mat3& rotation = rel.rotation;
+  const Vec3 dt = rel.position - k.offset;
   // The largest distance a unit vector of b's frame turned (the spectral norm
   // of ΔR − I, 2 sin(θ/2)); the Frobenius norm is √2 times it for a rotation.
   const double turn = (k.rotation.transpose() * rotation - Mat3::Identity()).norm() / std::sqrt(2.0) * size;
