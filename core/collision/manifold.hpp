@@ -49,6 +49,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <vector>
 
 namespace gacompare::collision {
@@ -96,10 +97,12 @@ void clip(const std::vector<typename Body::Point>& in, const typename Body::Plan
   }
 }
 
-// At most kMaxManifoldPoints of the contacts: the deepest, the farthest from
-// it, the one making the largest triangle with those two, and the one making
-// the largest triangle on the other side of their line.
-inline void reduce(std::vector<FeatureContact>& c, const Vec3& n) {
+// At most kMaxManifoldPoints of the contacts c[first..]: the deepest, the
+// farthest from it, the one making the largest triangle with those two, and
+// the one making the largest triangle on the other side of their line. In
+// place: every pair in contact comes through here, so it allocates nothing.
+inline void reduce(std::vector<FeatureContact>& out, std::size_t first, const Vec3& n) {
+  const std::span<const FeatureContact> c(out.data() + first, out.size() - first);
   if (c.size() <= static_cast<std::size_t>(kMaxManifoldPoints)) return;
   std::size_t i0 = 0, i1 = 0, i2 = 0, i3 = 0;
   for (std::size_t i = 1; i < c.size(); ++i)
@@ -115,10 +118,12 @@ inline void reduce(std::vector<FeatureContact>& c, const Vec3& n) {
     if (s > most) most = s, i2 = i;
     if (s < least) least = s, i3 = i;
   }
-  std::vector<FeatureContact> kept{c[i0], c[i1]};
-  if (most > 0) kept.push_back(c[i2]);
-  if (least < 0) kept.push_back(c[i3]);
-  c.swap(kept);
+  std::array<FeatureContact, kMaxManifoldPoints> kept{c[i0], c[i1]};
+  std::size_t count = 2;
+  if (most > 0) kept[count++] = c[i2];
+  if (least < 0) kept[count++] = c[i3];
+  out.resize(first);
+  out.insert(out.end(), kept.begin(), kept.begin() + static_cast<long>(count));
 }
 
 // Face k of body r is the reference; `r_is_a` says which of the pair it is.
@@ -135,7 +140,9 @@ void face_contacts(const Body& r, const Body& i, int k, bool r_is_a, double band
   double most = i.normal(0).dot(n);
   for (int j = 1; j < planes; ++j)
     if (const double c = i.normal(j).dot(n); c < most) most = c, f = j;
-  std::vector<Point> poly, next;
+  // Each thread's clipping polygons, kept between calls (no allocation once grown).
+  thread_local std::vector<Point> poly, next;
+  poly.clear();
   for (const int v : i.mesh().faces()[f]) poly.push_back(i.vertex_point(v));
   const auto& loop = r.mesh().faces()[k];
   for (std::size_t e = 0; e < loop.size() && !poly.empty(); ++e) {
@@ -158,10 +165,7 @@ void face_contacts(const Body& r, const Body& i, int k, bool r_is_a, double band
     for (std::size_t c = first; c < out.size() && !duplicate; ++c) duplicate = (out[c].point - x).norm() <= band;
     if (!duplicate) out.push_back({x, r_is_a ? n : Vec3(-n), -s, r_is_a ? Feature::face_a : Feature::face_b});
   }
-  std::vector<FeatureContact> mine(out.begin() + static_cast<long>(first), out.end());
-  reduce(mine, n);
-  out.resize(first);
-  out.insert(out.end(), mine.begin(), mine.end());
+  reduce(out, first, n);
 }
 
 }  // namespace detail

@@ -38,6 +38,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
     collision::SatHint hint;
     collision::FaceChoice choice;
     bool apart = false, kept = false;
+    bool had_kept = false;  // the pair had a kept manifold, refused or not
     std::uint64_t face_tested = 0, shapes = 0;
   };
   std::vector<Slot> slots;
@@ -55,7 +56,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
     slots.push_back({PairHit{i, j, {}, {}}, {}, {}});
     if (keep)
       if (const auto* k = state.kept.find(group[i], group[j]);
-          k && collision::refresh(*k, *setup.meshes[group[i]], *setup.meshes[group[j]], pose[i], pose[j],
+          (slots.back().had_kept = k != nullptr) && collision::refresh(*k, *setup.meshes[group[i]], *setup.meshes[group[j]], pose[i], pose[j],
                                   collision::kTouchingBand *
                                       collision::pair_scale(*setup.meshes[group[i]], *setup.meshes[group[j]]),
                                   slots.back().h.sat, slots.back().h.features)) {
@@ -118,8 +119,8 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
       if (s.choice.made && !s.h.features.empty()) {
         collision::keep(state.kept.at(wa, wb), *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a], pose[s.h.b], s.h.sat,
                         s.hint, s.choice, s.h.features);
-      } else if (auto* k = state.kept.find(wa, wb)) {
-        k->valid = false;
+      } else if (s.had_kept) {
+        state.kept.find(wa, wb)->valid = false;  // found above; only this pair's at() adds it
       }
     }
     if (reuse && !s.kept) {
