@@ -37,6 +37,7 @@
 
 #include <cmath>
 #include <limits>
+#include <span>
 #include <vector>
 
 namespace gacompare::collision {
@@ -91,7 +92,7 @@ inline bool spans_minkowski_face(const Vec3& a, const Vec3& b, const Vec3& bxa, 
 // through a vertex of the map, and the caller tests every edge instead), −1
 // if it ran longer than B has edges, −2 if on_pair stopped it.
 template <class OnPair>
-int walk_arc(const Mesh& b, const std::vector<ShapeEdge>& eb, const ShapeEdge& x, int from, OnPair&& on_pair) {
+int walk_arc(const Mesh& b, std::span<const ShapeEdge> eb, const ShapeEdge& x, int from, OnPair&& on_pair) {
   const Vec3 bxa = -x.d;
   int v = from, came = -1;
   for (std::size_t steps = 0; steps <= eb.size(); ++steps) {
@@ -295,8 +296,8 @@ PairContact separating_axis(const Body& a, const Body& b, bool early_exit = fals
   }
 
   if (faces(a, b, Feature::face_a) || faces(b, a, Feature::face_b)) return done();
-  const std::vector<ShapeEdge>& ea = a.shape().edges();
-  const std::vector<ShapeEdge>& eb = b.shape().edges();
+  const std::span<const ShapeEdge> ea = a.shape().edges();
+  const std::span<const ShapeEdge> eb = b.shape().edges();
   // Every vertex of b a corner (its regions tile the sphere), and enough edges
   // for the walk to pay: testing a box's 12 edges is cheaper than walking
   // them, and boxes meet face to face, where their maps share arcs and every

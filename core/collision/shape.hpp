@@ -48,8 +48,11 @@
 #include "core/collision/collision.hpp"
 #include "core/model/mesh.hpp"
 
+#include <boost/container/small_vector.hpp>
+
 #include <concepts>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -92,6 +95,12 @@ concept NarrowphaseAlgebra = requires(const Vec3& x, double d, const typename A:
   { A::centre_distance2(s, s) } -> std::convertible_to<double>;
   { A::distance2(p, p) } -> std::convertible_to<double>;
 };
+
+// Room inside a Shape for a box's geometry (8 vertices, 6 faces, 12 edges;
+// an octahedron's 8 faces): the pairs read a body's vertices, faces and edges
+// from one block beside its pose, not from three blocks of the heap. A larger
+// mesh keeps the rest on the heap.
+inline constexpr std::size_t kInlineVertices = 8, kInlineFaces = 8, kInlineEdges = 12;
 
 template <NarrowphaseAlgebra A>
 class Shape {
@@ -168,7 +177,7 @@ class Shape {
 
   // The feature edges, built on first use after a place(): a pair decided by a
   // face never needs them.
-  const std::vector<ShapeEdge>& edges() const {
+  std::span<const ShapeEdge> edges() const {
     if (!edges_ready_) {
       const auto& e = mesh_->edges();
       const auto& ep = mesh_->edge_planes();
@@ -179,7 +188,7 @@ class Shape {
       }
       edges_ready_ = true;
     }
-    return edges_;
+    return {edges_.data(), edges_.size()};
   }
 
   // Triangle k prepared for segment tests (§2.4.4), built on first use: the
@@ -231,13 +240,13 @@ class Shape {
  private:
   const Mesh* mesh_ = nullptr;
   Pose pose_;
-  std::vector<Point> points_;
-  std::vector<Plane> planes_;
+  boost::container::small_vector<Point, kInlineVertices> points_;
+  boost::container::small_vector<Plane, kInlineFaces> planes_;
   Vec3 centre_ = Vec3::Zero();
   Vec3 half_axis_ = Vec3::Zero();
   double unit_ = 1;
   bool climb_ = false;
-  mutable std::vector<ShapeEdge> edges_;
+  mutable boost::container::small_vector<ShapeEdge, kInlineEdges> edges_;
   mutable std::vector<Prepared> triangles_;
   mutable bool edges_ready_ = false, triangles_ready_ = false;
 };
