@@ -186,19 +186,6 @@ StackCase pyramid(ContactSolverMethod method, int layers, bool square, double mu
                            std::to_string(count), " cubes, 2 cm apart in each row, each on ", square ? "four" : "two",
                            " below), each layer dropped 1 mm", mu > 0 ? cat(", friction ", format_mu(mu), " on every face") : ", frictionless and without bounce",
                            ": every cube comes to rest where it was placed"));
-  // The square pyramid stays open: its cubes are sampled up to 3e-6 m above
-  // their rest, because the friction displacement lifts a resting cube by
-  // ½|g|h² (4.9e-6 m) after a detection that found its contact shallower than
-  // that. With every pair tested at every detection (no kept contacts), one
-  // landing per backend also has Newton's method (coulomb.hpp) stall a little
-  // above the velocity tolerance (1.14 to 1.35 times: pushing corners of four
-  // faces still approaching, the faces' other corners parting, at the least
-  // residual those rows allow), and the sweeps after it end on their cap
-  // (docs/collision-response.md, the square pyramid with friction).
-  if (mu > 0 && square)
-    c.open = "the friction displacement lifts cubes up to 3e-6 m above their rest, by more than the depth their "
-             "contacts were detected at; with every pair tested, one landing per backend also has Newton's method stall "
-             "at 1.1 to 1.4 times the velocity tolerance and the sweeps after it end on their cap";
   return c;
 }
 

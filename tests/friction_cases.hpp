@@ -110,6 +110,35 @@ TYPED_TEST_P(FrictionCases, FrictionOffIsBitIdenticalAndAddsNoRows) {
   }
 }
 
+// A cube let go at rest 3e-6 m above the floor, with friction: it falls onto
+// the floor within the first collision step and must then rest on it, its
+// bottom face at the floor's top, never above it (and below it by no more
+// than the penetration tolerance). Every height up to ½|g|h² (4.9e-6 m at
+// h = 1 ms) above the floor was a fixed point of the friction displacement,
+// which put the cube back where each step began: it hovered 3e-6 m up for the
+// whole run. Above by at most 1e-12 m: the lowering puts the deepest corner at
+// the floor's top to the rounding of the heights (~1e-16 m), with room for
+// the next steps' ½|g|h² falls and lifts, which cancel to rounding.
+TYPED_TEST_P(FrictionCases, CubeLetGoJustAboveTheFloorRestsOnItInsteadOfHovering) {
+  core::Scene s = this->scene("friction_floor_stop");
+  s.bodies.back().velocity = core::Vec3::Zero();
+  s.bodies.back().position.z() = 0.1 + 3e-6;
+  s.duration = 0.2;
+  const core::Run run = core::simulate<TypeParam>(s);
+  ASSERT_FALSE(run.error) << *run.error;
+  EXPECT_GT(run.counters.at("friction_lowerings"), 0u);
+  const std::size_t box = s.bodies.size() - 1;
+  int checked = 0;
+  for (const auto& sample : run.samples) {
+    if (sample.t < 0.002) continue;  // let go above the floor; on it after the first step
+    const double z = sample.bodies[box].position.z();
+    EXPECT_LE(z, 0.1 + 1e-12) << "t = " << sample.t;
+    EXPECT_GE(z, 0.1 - 1e-4) << "t = " << sample.t;
+    ++checked;
+  }
+  EXPECT_GT(checked, 90);
+}
+
 // A solid sphere sent along the floor without spin slides, then rolls: speed
 // v0 − μ g t while it slides, ω r = v at t* = 2 v0/(7 μ g), 5/7 v0 after. To
 // 1e-3 relative (the bound; measured 1.4e-5: in each step the ball
@@ -164,6 +193,7 @@ TYPED_TEST_P(FrictionCases, TangentPrimitivesSpanTheContactPlane) {
 REGISTER_TYPED_TEST_SUITE_P(FrictionCases, BoxSlidesDownInclineWithCoulombAcceleration,
                             BoxOnShallowInclineSticksWithoutCreeping,
                             BoxSlidingOnFloorStopsAtTheCoulombDistanceAndTime, FrictionOffIsBitIdenticalAndAddsNoRows,
+                            CubeLetGoJustAboveTheFloorRestsOnItInsteadOfHovering,
                             SphereSentAlongFloorSlidesThenRollsAtFiveSevenths, TopOnFloorPrecessesAtTheHeavyTopRate,
                             MixedPileOfSpheresAndBoxesSettlesAtItsStackedHeights, TangentPrimitivesSpanTheContactPlane);
 

@@ -54,6 +54,9 @@ struct CollisionCounters {
   // At rest (contact_solver.hpp): position projections skipped as idle, and
   // frictionless warm starts kept without a solve.
   std::uint64_t projections_skipped = 0, exact_starts = 0;
+  // With friction: resting pairs whose friction displacement would have left
+  // them apart, their moving body lowered onto its static support instead.
+  std::uint64_t friction_lowerings = 0;
   // With friction, the direct solve's Coulomb problem (coulomb.hpp): warm
   // starts already exact (no solve), solves the rounds left inexact and
   // Newton's method made exact, their Newton steps, and those it could not.

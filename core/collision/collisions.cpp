@@ -53,6 +53,7 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["direct_friction_rounds"] = direct_rounds;
   out["direct_unsolved"] = direct_unsolved;
   out["exact_starts"] = exact_starts;
+  out["friction_lowerings"] = friction_lowerings;
   out["projections_skipped"] = projections_skipped;
   out["coulomb_exact_starts"] = coulomb_exact_starts;
   out["coulomb_solves"] = coulomb_solves;
