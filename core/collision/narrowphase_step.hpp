@@ -54,15 +54,15 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
     ++state.counters.narrowphase_pairs;
     if (group.data() != setup.all_bodies.data()) ++state.counters.island_narrowphase_pairs;
     slots.push_back({PairHit{i, j, {}, {}}, {}, {}});
-    if (keep)
-      if (const auto* k = state.kept.find(group[i], group[j]);
-          (slots.back().had_kept = k != nullptr) && collision::refresh(*k, *setup.meshes[group[i]], *setup.meshes[group[j]], pose[i], pose[j],
-                                  collision::kTouchingBand *
-                                      collision::pair_scale(*setup.meshes[group[i]], *setup.meshes[group[j]]),
-                                  slots.back().h.sat, slots.back().h.features)) {
-        slots.back().kept = true;
-        continue;
-      }
+    const collision::KeptContacts* kept = keep ? state.kept.find(group[i], group[j]) : nullptr;
+    slots.back().had_kept = kept != nullptr;
+    if (kept && collision::refresh(*kept, *setup.meshes[group[i]], *setup.meshes[group[j]], pose[i], pose[j],
+                                   collision::kTouchingBand *
+                                       collision::pair_scale(*setup.meshes[group[i]], *setup.meshes[group[j]]),
+                                   slots.back().h.sat, slots.back().h.features)) {
+      slots.back().kept = true;
+      continue;
+    }
     ++tested;
     if (!reuse) continue;
     for (const int k : {i, j})

@@ -712,18 +712,17 @@ class ContactSolver {
         Vec3 by;
       };
       std::vector<Lowering> lower;
-      for (std::size_t k = 0, begin = 0; k < rows.size(); ++k) {  // each pair's rows are consecutive
-        if (k + 1 < rows.size() && rows[k + 1].hit == rows[k].hit) continue;
-        const Row& first = rows[begin];
+      for (const auto& f : frictions) {
+        if (f.row != f.pair_begin) continue;  // once per pair: its rows are [pair_begin, pair_end), all with friction
+        const Row& first = rows[f.pair_begin];
         const bool a_static = setup.is_static[static_cast<std::size_t>(first.a)];
         bool resting = a_static != setup.is_static[static_cast<std::size_t>(first.b)] && !correct[first.hit];
         double end = -std::numeric_limits<double>::infinity();  // the deepest point's depth after the displacement
-        for (std::size_t j = begin; j <= k && resting; ++j) {
+        for (std::size_t j = f.pair_begin; j < f.pair_end && resting; ++j) {
           const Row& r = rows[j];
           resting = r.friction >= 0 && !frictions[static_cast<std::size_t>(r.friction)].impact;
           end = std::max(end, r.depth - normal_velocity(r, pseudo));
         }
-        begin = k + 1;
         // The hover's range only: above rounding, and at most ½ g h². A landing's
         // impulse leaves larger gaps (up to ½ dt v_rest); lowering those too
         // changed every friction pyramid's landings, and Newton's method then
