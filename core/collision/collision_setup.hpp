@@ -25,6 +25,9 @@ struct CollisionCounters {
   // Bodies integrated by the searches' trials (the deep pairs' bodies, or an
   // island when the pairs' time missed the band on the island's motion).
   std::uint64_t impact_bodies_integrated = 0, impact_island_misses = 0;
+  // Pairs deeper than the tolerance at a search's end that were already so at
+  // its start: left out of the search (time_of_impact_step.hpp).
+  std::uint64_t impact_pairs_deep_at_start = 0;
   std::uint64_t contacts = 0, impulses = 0, resting_contacts = 0, sweeps = 0, corrections = 0;
   std::uint64_t warm_started = 0, sweep_cap_hits = 0, correction_cap_hits = 0, unresolved_impacts = 0;
   // Islands (core/collision/islands.hpp, core/collision/collision_step.hpp): the islands with a

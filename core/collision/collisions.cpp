@@ -20,6 +20,7 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["impact_interpolation_misses"] = impact_interpolation_misses;
   out["impact_bodies_integrated"] = impact_bodies_integrated;
   out["impact_island_misses"] = impact_island_misses;
+  out["impact_pairs_deep_at_start"] = impact_pairs_deep_at_start;
   out["contacts"] = contacts;
   out["resting_contacts"] = resting_contacts;
   out["impulses"] = impulses;

@@ -51,9 +51,31 @@ class TimeOfImpactStep {
     // a resting contact already in the band (0, tol] would put the deepest
     // depth in the band at any trial time, and the search would stop short of
     // the impact (halving the sub-step instead of finding it).
+    // Nor a pair that was already deeper than the tolerance at t (left so by
+    // a search that found no time, or pushed into a third body by a
+    // correction): no earlier time puts it in the band, and rewinding cannot
+    // resolve it; the response at the time found does (or at tb when no other
+    // pair went deep). The report's search (§2.5.1) has one pair; among many,
+    // such a pair made the island's whole search give up, and every impact of
+    // every other pair of the island was then taken at tb, up to a centimetre
+    // deep (a 1,000-body box left 4.6 mm in the floor).
+    const double tol = setup.settings.penetration_tolerance;
     std::vector<std::pair<int, int>> pairs;
-    for (const auto& hit : d.hits)
-      if (hit.sat.depth > setup.settings.penetration_tolerance) pairs.emplace_back(hit.a, hit.b);
+    double g_hi = -INFINITY;  // the deepest of the searched pairs at tb
+    for (const auto& hit : d.hits) {
+      if (hit.sat.depth <= tol) continue;
+      const std::vector<std::pair<int, int>> one{{hit.a, hit.b}};
+      if (c_.depth_of(s_, a.model, yb, a.group, one, inner) > tol) {
+        ++s_.counters.impact_pairs_deep_at_start;
+        continue;
+      }
+      pairs.emplace_back(hit.a, hit.b);
+      g_hi = std::max(g_hi, hit.sat.depth);
+    }
+    if (pairs.empty()) {
+      ++s_.counters.unresolved_searches;
+      return tb;  // ys already holds the state at tb
+    }
     // The pairs' bodies (ascending island indices), as a model of their own.
     std::vector<int> deep_bodies;
     for (const auto& pair : pairs) deep_bodies.push_back(pair.first), deep_bodies.push_back(pair.second);
@@ -66,7 +88,7 @@ class TimeOfImpactStep {
     for (std::size_t k = 0; k < deep_bodies.size(); ++k) deep_group[k] = a.group[static_cast<std::size_t>(deep_bodies[k])];
     Subsystem<Bodies> p(a.model, deep_bodies, a.stride, setup.solver);
     const std::vector<double> pb = p.gather(yb);
-    const ImpactSearch how{setup.settings.time_of_impact, setup.settings.penetration_tolerance,
+    const ImpactSearch how{setup.settings.time_of_impact, tol,
                            closing_speed(a, pairs, yb, ys, tb - t)};
     // Counters: a trial is one depth evaluation of the search; an island
     // integration (impact_state_evaluations) the costly kind.
@@ -90,13 +112,11 @@ class TimeOfImpactStep {
       ++s_.counters.impact_iterations;
       return island(tm);
     };
-    const double g_lo = c_.depth_of(s_, p.model, pb, deep_group, deep_pairs, inner);
-    // Already deeper than the tolerance at t (a correction pushed one body
-    // into a third): no earlier time can be in the band; don't search.
+    const double g_lo = c_.depth_of(s_, p.model, pb, deep_group, deep_pairs, inner);  // ≤ tol: see above
     Searched r;
-    if (g_lo <= how.tol) {
+    {
       if (setup.settings.impact_motion == ImpactMotion::integrate) {
-        r = search_impact(how, alone, t, tb, g_lo, d.max_depth);
+        r = search_impact(how, alone, t, tb, g_lo, g_hi);
       } else {
         const auto interpolated = [&](double tm) {
           ++s_.counters.impact_interpolations;
@@ -106,15 +126,15 @@ class TimeOfImpactStep {
             return Bodies::interpolated_pose(a.model, yb, ys, static_cast<std::size_t>(k), s);
           }, inner);
         };
-        r = search_impact(how, interpolated, t, tb, g_lo, d.max_depth);
+        r = search_impact(how, interpolated, t, tb, g_lo, g_hi);
         if (r.found) {
           const double g = alone(r.t);  // the true motion there
           if (!(g > 0 && g <= how.tol)) {
             ++s_.counters.impact_interpolation_misses;
-            r = search_again(how, alone, t, tb, g_lo, d.max_depth, r.t, g);
+            r = search_again(how, alone, t, tb, g_lo, g_hi, r.t, g);
           }
         } else {
-          r = search_impact(how, alone, t, tb, g_lo, d.max_depth);
+          r = search_impact(how, alone, t, tb, g_lo, g_hi);
         }
       }
       // The island once, to the time found; the search again over the
@@ -123,7 +143,7 @@ class TimeOfImpactStep {
         const double g = island(r.t);
         if (!(g > 0 && g <= how.tol)) {
           ++s_.counters.impact_island_misses;
-          r = search_again(how, island_trial, t, tb, g_lo, d.max_depth, r.t, g);
+          r = search_again(how, island_trial, t, tb, g_lo, g_hi, r.t, g);
         }
       }
     }
