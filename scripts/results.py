@@ -36,7 +36,7 @@ PAGES = {
     "contacts": ("degenerate contact cases, friction, the time-of-impact search", contacts.generate),
     "stacking": ("columns, pyramids and mass ratios against their statics", stacking.generate),
     "bullet": ("the collision scenes against Bullet run whole", bullet.generate),
-    "scale": ("boxes of 27 to 10,000 bodies", scale.generate),
+    "scale": ("boxes of 27 to 1,000 bodies", scale.generate),
     "algebra": ("the algebra and the conformal geometry against their twins", algebra.generate),
     "operations": ("multiplies and adds per operation in the compiled code, each algebra", operations.generate),
     "meshes": ("mass properties by the report's voxels against exact integrals; hulls", dynamics.meshes),

@@ -64,12 +64,34 @@ def run_size(args, n):
             "counters": {k: run["counters"][k] for k in ("largest_island", "islands_stepped_alone",
                                                           "island_bodies_stepped_alone", "impact_searches",
                                                           "narrowphase_pairs", "island_narrowphase_pairs",
-                                                          "links_apart", "broadphase_candidates")
+                                                          "links_apart", "broadphase_candidates",
+                                                          "impact_searches_unresolved")
                          if k in run.get("counters", {})},
         }
+    for backend, line in sanity(os.path.join(folder, "report.md")).items():
+        if backend in rows:
+            rows[backend]["penetration"] = line
     if done.returncode != 0:
         print(f"scale: N = {n}: gacompare exited {done.returncode}", file=sys.stderr)
     return rows
+
+
+PENETRATION = "sanity: penetration into a static body (m)"
+
+
+def sanity(report):
+    """Each backend's line of the report's penetration rule (compare/sanity.cpp):
+    the deepest any body went into a wall at a sample, its bound and the verdict.
+    A run whose bodies end steps inside the walls is wrong physics, however fast."""
+    out = {}
+    if not os.path.exists(report):
+        return out
+    for line in open(report):
+        cols = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cols) == 6 and cols[2] == PENETRATION:
+            verdict = cols[5].replace("**", "")
+            out[cols[1]] = {"value": cols[3], "bound": cols[4], "pass": verdict.startswith("pass"), "note": verdict}
+    return out
 
 
 def table(args, sizes, data):
@@ -95,6 +117,16 @@ def table(args, sizes, data):
         steps = [f"{slope(pts[i:i + 2]):.2f}" for i in range(len(pts) - 1)]
         p = f"{slope(pts):.2f}" if len(pts) >= 2 else "–"
         out.append(f"- {b}: p = {p}" + (f" [{', '.join(steps)}]" if steps else ""))
+    out += ["", "Physical sanity: the deepest any body went into a wall at a sample (every 0.05 s), against the "
+            "rule's bound (ten penetration tolerances; Bullet's adds one step's travel) — a run that fails it is "
+            "wrong physics, and its time is no measure:", "",
+            "| N | " + " | ".join(f"{b} (m)" for b in backends) + " |", "|---:|" + "---:|" * len(backends)]
+    for n in sizes:
+        cells = []
+        for b in backends:
+            x = data[n].get(b, {}).get("penetration")
+            cells.append("–" if not x else f"{x['value']}" + ("" if x["pass"] else f" **FAILS** (bound {x['bound']})"))
+        out.append(f"| {n} | " + " | ".join(cells) + " |")
     out += ["", "Share of stage time (" + ", ".join(STAGES) + "):", "",
             "| N | backend | " + " | ".join(STAGES) + " |", "|---:|---|" + "---:|" * len(STAGES)]
     for n in sizes:
