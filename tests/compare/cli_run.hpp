@@ -56,6 +56,14 @@ const fs::path& scratch() {
   return d;
 }
 
+[[maybe_unused]] void write_text(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p) << text;
+}
+
+// A scene that runs in milliseconds.
+const std::string kScene = std::string(GACOMPARE_DATA_DIR) + "/scenes/projectile_linear_drag.json";
+
 [[maybe_unused]] json read_json(const fs::path& p) {
   std::ifstream in(p);
   return json::parse(in);
