@@ -991,13 +991,17 @@ class ContactSolver {
       }
       remember(hits, world, rows, frictions, dt);
       // The pairs whose depth is corrected: deeper than tol/2, and resting or
-      // not parting by themselves. A pair that parts after an impact is left
-      // alone: the impact conserves momenta exactly, and the depth goes with it.
+      // not parting by themselves; and every pair deeper than tol. A pair in
+      // the band that parts after an impact is left alone: the impact
+      // conserves momenta exactly, and the depth goes with it. A pair beyond
+      // the band was not found by a search (a body an impulse made faster than
+      // its reach met one it was not linked to, collision_step.hpp): parting
+      // slowly, it stayed millimetres deep for many steps.
       const double tol = setup.settings.penetration_tolerance;
       std::vector<char> correct(hits.size(), 0), parting(hits.size(), 1);
       for (const auto& r : rows) parting[r.hit] &= normal_velocity(r, motion) > setup.resting_speed;
       for (std::size_t hi = 0; hi < hits.size(); ++hi)
-        correct[hi] = hits[hi].sat.depth > 0.5 * tol && (resting_pair[hi] || !parting[hi]);
+        correct[hi] = hits[hi].sat.depth > tol || (hits[hi].sat.depth > 0.5 * tol && (resting_pair[hi] || !parting[hi]));
       for (std::size_t k = 0; k < motion.size(); ++k) Bodies::store(m, y, static_cast<std::size_t>(body_of[k]), motion[k]);
       if (direct_solve) project_positions(m, y, world, rows, motion, body_of, correct, parting, moves, a);
       else correct_positions(m, y, rows, motion, body_of, correct);
