@@ -12,7 +12,8 @@ from .common import strip_command_line
 def generate(ctx):
     out = ctx.scratch_dir("scale")
     # Not --long: with every impact found within the tolerance, the 10,000-body
-    # box's pile costs hours per simulated second (docs/results/scale.md says why).
+    # box's pile costs a quarter of an hour per simulated second per backend
+    # (docs/results/scale.md says why), several hours for the three repeats.
     size = ["--sizes", "27,125,1000", "--repeat", "1" if ctx.quick else "3"]
     ctx.run(["python3", "bench/scale/scale.py", "--binary", ctx.gacompare, *size, "--out", out],
             quote=f"python3 bench/scale/scale.py --binary {ctx.gacompare} {' '.join(size)} --out DIR")
