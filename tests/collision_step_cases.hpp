@@ -350,10 +350,13 @@ TYPED_TEST_P(CollisionStepCases, TwoThreadsGiveTheSameRunBitForBit) {
 TYPED_TEST_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance) {
   if (!long_tests()) GTEST_SKIP() << "1 s of 343 bodies (GACOMPARE_QUICK_TESTS=1)";
   constexpr int kSide = 7;  // 343 bodies
-  constexpr double kPitch = 0.3, kTol = 1e-4;
-  const double half = 0.5 * kPitch * (kSide - 1) + 0.3;  // the walls' inner faces, as box_scene.py
-  core::Scene s = this->drop();
+  constexpr double kPitch = 0.3;
+  const double offset = 0.5 * kPitch * (kSide - 1), half = offset + 0.3;  // the walls' inner faces, as box_scene.py
+  core::Scene s = this->drop();  // its effects: gravity, and collisions with their tolerance
   s.bodies.clear();
+  const auto* collisions = s.find_effect<core::Collisions>();
+  ASSERT_NE(collisions, nullptr);
+  const double tol = collisions->penetration_tolerance;
   for (int axis = 0; axis < 3; ++axis)
     for (const double sign : {-1.0, 1.0}) {
       core::Body w;
@@ -370,7 +373,6 @@ TYPED_TEST_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance) {
     }
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> speed(-2, 2), spin(-5, 5), unit(0, 1);
-  const double offset = 0.5 * kPitch * (kSide - 1);
   for (int k = 0; k < kSide * kSide * kSide; ++k) {
     core::Body b;
     b.name = std::to_string(k);
@@ -408,12 +410,12 @@ TYPED_TEST_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance) {
       for (const Eigen::Vector3d& v : model.bodies[i].mesh->vertices())
         depth = std::max(depth, ((r * v + b.position).cwiseAbs() - Eigen::Vector3d::Constant(half)).maxCoeff());
       if (depth > deepest) deepest = depth, t_deepest = sample.t, who = s.bodies[i].name;
-      if (depth > kTol && deep_before[i] && ++twice <= 3)
+      if (depth > tol && deep_before[i] && ++twice <= 3)
         ADD_FAILURE() << s.bodies[i].name << " deeper than the tolerance at two samples running, t = " << sample.t
                       << ": " << depth << " m";
-      deep_before[i] = depth > kTol;
+      deep_before[i] = depth > tol;
     }
-  EXPECT_LE(deepest, 10 * kTol) << who << " at t = " << t_deepest;
+  EXPECT_LE(deepest, 10 * tol) << who << " at t = " << t_deepest;
   EXPECT_EQ(twice, 0);
 }
 
