@@ -57,6 +57,7 @@ const char* method_name(core::TimeOfImpact m) {
     case core::TimeOfImpact::illinois: return "illinois";
     case core::TimeOfImpact::golden_section: return "golden_section";
     case core::TimeOfImpact::conservative_advancement: return "conservative_advancement";
+    case core::TimeOfImpact::none: return "none";
   }
   return "?";
 }

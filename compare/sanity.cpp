@@ -205,8 +205,11 @@ CheckLine penetration(const SceneFacts& w, const core::Scene& scene, const core:
   // contact only after the step that made it, so its bound adds one step's
   // travel at the body's highest speed: that is its method, not a body passing
   // through (docs/collision-response.md, "Bullet as a whole-simulation reference").
+  // Our backends with the scene's time_of_impact "none" take contacts the same
+  // way, at the end of each collision step.
   const auto fixed = run.metrics.find("bullet_fixed_step_s");
-  const double step = fixed == run.metrics.end() ? 0.0 : fixed->second;
+  const bool unsearched = w.collisions->time_of_impact == core::TimeOfImpact::none;
+  const double step = fixed != run.metrics.end() ? fixed->second : unsearched ? w.collisions->step : 0.0;
   std::vector<double> bound(w.mass.size(), kSanityDeepPenetration * w.tol);
   for (const auto& s : run.samples)
     for (std::size_t i = 0; i < bound.size() && i < s.bodies.size(); ++i)
@@ -253,7 +256,8 @@ CheckLine penetration(const SceneFacts& w, const core::Scene& scene, const core:
            num(t_at) + " s";
     if (!inside.empty()) note += "; " + inside;
   } else if (step > 0) {
-    note = "bound: 10 tolerances plus one fixed step (" + num(step) + " s) at the body's highest speed";
+    note = "bound: 10 tolerances plus one step without a time of impact (" + num(step) +
+           " s) at the body's highest speed";
   }
   return line(scene, run, what, depth_at, bound_at, ok, note);
 }

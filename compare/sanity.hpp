@@ -20,7 +20,8 @@
 //     than 10 · tol in a static one (exact separating-axis depth,
 //     collision::sat_reference), nor its centre of mass inside one. A backend
 //     that steps without a time of impact (Bullet, which reports its fixed step
-//     h in run.metrics) may also dip one step's travel, h · |v|max. Samples
+//     h in run.metrics, or ours with the scene's time_of_impact "none" and its
+//     collision step h) may also dip one step's travel, h · |v|max. Samples
 //     only: a body that passes wholly through a thin static body between two
 //     samples is not seen here.
 //  3. A body at rest does not drift sideways. See lateral_drift_checks below.

@@ -347,16 +347,17 @@ TYPED_TEST_P(CollisionStepCases, TwoThreadsGiveTheSameRunBitForBit) {
 // when one had been deep already at the sub-step's start; the pile's other
 // impacts were then taken at the sub-step's end, and bodies stayed up to
 // 4.9 mm inside the walls for several steps (4.6 mm on 1,000 bodies).
-TYPED_TEST_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance) {
-  if (!long_tests()) GTEST_SKIP() << "1 s of 343 bodies (GACOMPARE_QUICK_TESTS=1)";
-  constexpr int kSide = 7;  // 343 bodies
-  constexpr double kPitch = 0.3;
-  const double offset = 0.5 * kPitch * (kSide - 1), half = offset + 0.3;  // the walls' inner faces, as box_scene.py
-  core::Scene s = this->drop();  // its effects: gravity, and collisions with their tolerance
+// 343 mixed bodies thrown about in a closed box, in the scale benchmark's
+// layout (bench/scale/box_scene.py) from a generator of their own, sampled at
+// every collision step; `s` gives the effects (gravity, collisions). The walls
+// come first, so bodies 6 on are the movers.
+constexpr int kCrowdSide = 7;
+constexpr double kCrowdPitch = 0.3;
+constexpr double kCrowdHalf = 0.5 * kCrowdPitch * (kCrowdSide - 1) + 0.3;  // the walls' inner faces, as box_scene.py
+
+inline core::Scene crowded_box(core::Scene s) {
+  const double offset = 0.5 * kCrowdPitch * (kCrowdSide - 1), half = kCrowdHalf;
   s.bodies.clear();
-  const auto* collisions = s.find_effect<core::Collisions>();
-  ASSERT_NE(collisions, nullptr);
-  const double tol = collisions->penetration_tolerance;
   for (int axis = 0; axis < 3; ++axis)
     for (const double sign : {-1.0, 1.0}) {
       core::Body w;
@@ -373,7 +374,7 @@ TYPED_TEST_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance) {
     }
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> speed(-2, 2), spin(-5, 5), unit(0, 1);
-  for (int k = 0; k < kSide * kSide * kSide; ++k) {
+  for (int k = 0; k < kCrowdSide * kCrowdSide * kCrowdSide; ++k) {
     core::Body b;
     b.name = std::to_string(k);
     b.name.insert(0, 1, 'b');
@@ -382,8 +383,8 @@ TYPED_TEST_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance) {
     if (pick == 1) b.shape = core::TetrahedronShape{0.2};
     if (pick == 2) b.shape = core::OctahedronShape{0.09};
     b.density = 500;
-    b.position = Eigen::Vector3d(k / (kSide * kSide) * kPitch - offset, k / kSide % kSide * kPitch - offset,
-                                 k % kSide * kPitch - offset);
+    b.position = Eigen::Vector3d(k / (kCrowdSide * kCrowdSide) * kCrowdPitch - offset,
+                                 k / kCrowdSide % kCrowdSide * kCrowdPitch - offset, k % kCrowdSide * kCrowdPitch - offset);
     const double u1 = unit(rng), u2 = unit(rng), u3 = unit(rng);  // Shoemake's uniform rotation
     const double a = std::sqrt(1 - u1), c = std::sqrt(u1);
     b.orientation = {a * std::sin(2 * M_PI * u2), a * std::cos(2 * M_PI * u2), c * std::sin(2 * M_PI * u3),
@@ -394,32 +395,92 @@ TYPED_TEST_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance) {
   }
   s.duration = 1;
   s.output_every = 1e-3;  // every collision step
+  return s;
+}
+
+// Each mover's depth in the crowded box's walls at each sample (−gap when
+// apart), from the samples alone: its mesh's vertices against the walls'
+// inner faces.
+inline std::vector<std::vector<double>> wall_depths(const core::Scene& s, const core::Run& run) {
+  const core::Model model = core::compile(s);
+  std::vector<std::vector<double>> out;
+  for (const auto& sample : run.samples) {
+    out.emplace_back(sample.bodies.size(), -INFINITY);
+    for (std::size_t i = 6; i < sample.bodies.size(); ++i) {
+      const auto& b = sample.bodies[i];
+      const Eigen::Matrix3d r = core::rotation_matrix(b.orientation);
+      for (const Eigen::Vector3d& v : model.bodies[i].mesh->vertices())
+        out.back()[i] = std::max(out.back()[i], ((r * v + b.position).cwiseAbs() - Eigen::Vector3d::Constant(kCrowdHalf)).maxCoeff());
+    }
+  }
+  return out;
+}
+
+TYPED_TEST_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance) {
+  if (!long_tests()) GTEST_SKIP() << "1 s of 343 bodies (GACOMPARE_QUICK_TESTS=1)";
+  const core::Scene s = crowded_box(this->drop());
+  const auto* collisions = s.find_effect<core::Collisions>();
+  ASSERT_NE(collisions, nullptr);
+  const double tol = collisions->penetration_tolerance;
   const core::Run run = core::simulate<TypeParam>(s);
   ASSERT_FALSE(run.error) << *run.error;
   ASSERT_GT(run.counters.at("impact_searches"), 1000u);
-  const core::Model model = core::compile(s);
+  const auto depths = wall_depths(s, run);
   double deepest = 0, t_deepest = 0;
   std::string who;
   std::vector<char> deep_before(s.bodies.size(), 0);  // deeper than the tolerance at the last sample
   int twice = 0;
-  for (const auto& sample : run.samples)
-    for (std::size_t i = 6; i < sample.bodies.size(); ++i) {
-      const auto& b = sample.bodies[i];
-      const Eigen::Matrix3d r = core::rotation_matrix(b.orientation);
-      double depth = -INFINITY;
-      for (const Eigen::Vector3d& v : model.bodies[i].mesh->vertices())
-        depth = std::max(depth, ((r * v + b.position).cwiseAbs() - Eigen::Vector3d::Constant(half)).maxCoeff());
-      if (depth > deepest) deepest = depth, t_deepest = sample.t, who = s.bodies[i].name;
+  for (std::size_t k = 0; k < depths.size(); ++k)
+    for (std::size_t i = 6; i < depths[k].size(); ++i) {
+      const double depth = depths[k][i];
+      if (depth > deepest) deepest = depth, t_deepest = run.samples[k].t, who = s.bodies[i].name;
       if (depth > tol && deep_before[i] && ++twice <= 3)
-        ADD_FAILURE() << s.bodies[i].name << " deeper than the tolerance at two samples running, t = " << sample.t
-                      << ": " << depth << " m";
+        ADD_FAILURE() << s.bodies[i].name << " deeper than the tolerance at two samples running, t = "
+                      << run.samples[k].t << ": " << depth << " m";
       deep_before[i] = depth > tol;
     }
   EXPECT_LE(deepest, 10 * tol) << who << " at t = " << t_deepest;
   EXPECT_EQ(twice, 0);
 }
 
-REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance, TwoThreadsGiveTheSameRunBitForBit, FarApartIslandsGiveWhatEachGivesAlone,
+// The same box with time_of_impact "none": no search, so an impact is taken
+// where its step ends, up to one step's travel deep, and pushed out by the
+// response and the passes after it (collision_step.hpp, push_out). What
+// holds: no sample (each after its step's response) shows a body deeper than
+// the sanity rule's bound for a method without a search, ten tolerances plus
+// one step's travel at its speed then or at the sample before
+// (compare/sanity.hpp). Here the passes also keep every sample within ten
+// tolerances, the searched run's bound; with the response's one linear
+// correction alone a body was 6.5 mm deep (65 tolerances, 4 mm past the
+// bound) and bodies stayed deeper than the tolerance for many steps.
+TYPED_TEST_P(CollisionStepCases, CrowdedBoxWithoutASearchStaysWithinOneStepsTravel) {
+  core::Scene s = crowded_box(this->drop());
+  core::Collisions* collisions = nullptr;
+  for (auto& e : s.effects)
+    if (auto* c = std::get_if<core::Collisions>(&e)) collisions = c;
+  ASSERT_NE(collisions, nullptr);
+  collisions->time_of_impact = core::TimeOfImpact::none;
+  const double tol = collisions->penetration_tolerance, h = collisions->step;
+  const core::Run run = core::simulate<TypeParam>(s);
+  ASSERT_FALSE(run.error) << *run.error;
+  EXPECT_EQ(run.counters.at("impact_searches"), 0u);
+  const auto depths = wall_depths(s, run);
+  double deepest = 0, worst = -INFINITY, t_worst = 0;
+  std::string who;
+  for (std::size_t k = 1; k < depths.size(); ++k)
+    for (std::size_t i = 6; i < depths[k].size(); ++i) {
+      const double v = std::max(run.samples[k].bodies[i].velocity.norm(), run.samples[k - 1].bodies[i].velocity.norm());
+      const double over = depths[k][i] - (10 * tol + h * v);
+      deepest = std::max(deepest, depths[k][i]);
+      if (over > worst) worst = over, t_worst = run.samples[k].t, who = s.bodies[i].name;
+    }
+  EXPECT_LE(worst, 0) << who << " at t = " << t_worst;
+  EXPECT_LE(deepest, 10 * tol);
+  EXPECT_GT(run.counters.at("push_out_detections"), 1000u);  // the impacts it took too deep
+}
+
+REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance,
+                            CrowdedBoxWithoutASearchStaysWithinOneStepsTravel, TwoThreadsGiveTheSameRunBitForBit, FarApartIslandsGiveWhatEachGivesAlone,
                             StepLimitOnlyWhereThereIsSomethingToHit, BodyTooFastForAnyStepStopsTheRunNamingIt,
                             StaticBoxFilterKeepsEveryPairInContact, ImpactTrialsIntegrateOnlyTheDeepPairsBodies,
                             PairsApartByMoreThanTheirReachDoNotLink, DenseOutputPairsRestartAfterAnImpact);

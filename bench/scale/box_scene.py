@@ -12,7 +12,8 @@ grid with 0.15 m to spare on every side, as in bodies_in_box (k = 3: walls at
 velocities in [-5, 5] rad/s, orientations uniform on SO(3) (Shoemake's
 method), all from one seeded generator, so the same N and seed always give the
 same file. Gravity, restitution 0.7, penetration tolerance 1e-4 m, collision
-step 1 ms and RK4 at 0.5 ms are bodies_in_box's.
+step 1 ms and RK4 at 0.5 ms are bodies_in_box's. --time-of-impact none writes
+the same box with no impact search (what the tolerance costs, scale.py).
 
 Names are b<index>; the walls are wall_x-, wall_x+, ... as in bodies_in_box.
 """
@@ -33,7 +34,7 @@ def unit_quaternion(rng):
             b * math.cos(2 * math.pi * u3)]
 
 
-def scene(bodies, seed, duration, every):
+def scene(bodies, seed, duration, every, time_of_impact=None):
     if bodies < 1:
         raise SystemExit("box_scene: --bodies must be at least 1")
     rng = random.Random(seed)
@@ -70,6 +71,11 @@ def scene(bodies, seed, duration, every):
         f"benchmark's scene, bench/scale/box_scene.py --bodies {bodies} --seed {seed}); chaotic, so the backends "
         "part and the divergence check is bounded by the box.",
         duration, every, 0.0005, 0.7, walls + out)
+    if time_of_impact:
+        out["description"] += f" The collisions effect's time_of_impact is {time_of_impact}."
+        for effect in out["effects"]:
+            if effect["type"] == "collisions":
+                effect["time_of_impact"] = time_of_impact
     out["check"] = {"max_divergence": 2 * span}
     return out
 
@@ -98,8 +104,11 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--duration", type=float, default=0.5)
     ap.add_argument("--every", type=float, default=0.05)
+    ap.add_argument("--time-of-impact", default=None,
+                    help="the collisions effect's time_of_impact (default: the scene format's, bisection; "
+                         "none: no search, docs/collision-response.md)")
     args = ap.parse_args()
-    json.dump(scene(args.bodies, args.seed, args.duration, args.every), sys.stdout, indent=1)
+    json.dump(scene(args.bodies, args.seed, args.duration, args.every, args.time_of_impact), sys.stdout, indent=1)
     sys.stdout.write("\n")
 
 

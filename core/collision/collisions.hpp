@@ -234,6 +234,12 @@ struct Collider {
     state.contact.respond(setup, state.counters, m, y, group, hits, dt, profile);
   }
 
+  // The positional correction alone (ContactSolver::push_out).
+  void push_out(State& state, const Model& m, std::span<double> y, BodyIndices group, std::span<const PairHit> hits,
+                Profile& profile) const {
+    state.contact.push_out(setup, state.counters, m, y, group, hits, profile);
+  }
+
   // Once per collision step: see ContactSolver::forget_old_contacts.
   void forget_old_contacts(State& state) const { state.contact.forget_old_contacts(state.counters.steps); }
 

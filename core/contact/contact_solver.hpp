@@ -120,6 +120,15 @@ class ContactSolver {
     Solve{setup, counters, cache_}.respond(m, y, world, hits, dt, profile);
   }
 
+  // The positional correction alone: each pair of `hits` deeper than the
+  // tolerance pushed to tol/4, the others held from approaching; no impulse.
+  // For pairs a response left too deep (time_of_impact "none",
+  // core/collision/collision_step.hpp).
+  void push_out(const CollisionSetup& setup, CollisionCounters& counters, const Model& m, std::span<double> y,
+                BodyIndices world, std::span<const PairHit> hits, Profile& profile) {
+    Solve{setup, counters, cache_}.push_out(m, y, world, hits, profile);
+  }
+
   // Forgets warm-start impulses older than the previous collision step (a
   // pair that stopped touching; a contact is only warm started from the step
   // before). Once per collision step; `step` counts the collision steps.
@@ -899,51 +908,84 @@ class ContactSolver {
       for (const char t : touched) counters.corrections += t;
     }
 
-    void respond(const Model& m, std::span<double> y, BodyIndices world, std::span<const PairHit> hits, double dt,
-                 Profile& profile) const {
-      ScopedStage timed(profile, Stage::response);
-      // The bodies in contact, read once, in slots the rows index (no lookup in
-      // the solver's sweeps).
+    // The bodies of `hits` read once, in slots the rows index (no lookup in
+    // the solver's sweeps), and a row per contact point with its geometry:
+    // normal, arms, effective mass and depth; `point` holds each row's point.
+    // The velocity and friction parts are the response's.
+    struct Gathered {
       Motions motion;
       std::vector<int> body_of;  // slot → body of the group
+      std::vector<Row> rows;
+      std::vector<Vec3> point;
+    };
+    Gathered gather(const Model& m, std::span<const double> y, BodyIndices world, std::span<const PairHit> hits) const {
+      Gathered g;
       std::vector<std::size_t> slot_of(world.size(), std::numeric_limits<std::size_t>::max());  // body of the group → slot
       const auto slot = [&](int b) {
         std::size_t& s = slot_of[static_cast<std::size_t>(b)];
         if (s == std::numeric_limits<std::size_t>::max())
-          s = motion.size(), motion.push_back(Bodies::motion(m, y, static_cast<std::size_t>(b))), body_of.push_back(b);
+          s = g.motion.size(), g.motion.push_back(Bodies::motion(m, y, static_cast<std::size_t>(b))), g.body_of.push_back(b);
         return s;
       };
-      std::vector<Row> rows;
-      std::vector<Friction> frictions;  // none unless a pair has μ > 0
-      std::vector<char> resting_pair(hits.size(), 0);
       for (std::size_t hi = 0; hi < hits.size(); ++hi) {
         const auto& h = hits[hi];
-        const int wa = world[h.a], wb = world[h.b];
-        const double eps = std::min(setup.restitution[wa], setup.restitution[wb]);
-        // Box2D's mixing rule, √(μ_a μ_b) (Bullet multiplies by default; its run
-        // is hooked to the same √, compare/bullet_world.cpp).
-        const double mu = std::sqrt(setup.friction[wa] * setup.friction[wb]);
         const std::size_t sa = slot(h.a), sb = slot(h.b);
-        const Motion& ma = motion[sa];
-        const Motion& mb = motion[sb];
-        // The pair's contact plane: through its points' centroid, normal to n.
-        Vec3 centre = Vec3::Zero();
-        for (const auto& c : h.features) centre += c.point;
-        if (!h.features.empty()) centre /= static_cast<double>(h.features.size());
+        const Motion& ma = g.motion[sa];
+        const Motion& mb = g.motion[sb];
         for (const auto& c : h.features) {
-          Row r{wa, wb, sa, sb, hi, c.normal, c.point - Bodies::position(ma), c.point - Bodies::position(mb),
+          Row r{world[h.a], world[h.b], sa, sb, hi, c.normal, c.point - Bodies::position(ma), c.point - Bodies::position(mb),
                 Bodies::arm(ma, c.point, c.normal), Bodies::arm(mb, c.point, c.normal), 0, 0, 0, 0, c.depth};
           r.k = Bodies::inverse_effective_mass(ma, r.arm_a) + Bodies::inverse_effective_mass(mb, r.arm_b);
           if (!(r.k > 0)) continue;
-          r.before = normal_velocity(r, motion);
-          const bool resting = r.before < 0 && -r.before <= setup.resting_speed;
-          counters.resting_contacts += resting;
-          resting_pair[hi] |= resting;
-          r.target = r.before < 0 ? -(resting ? 0.0 : eps) * r.before : 0.0;
-          if (mu > 0) r.friction = static_cast<std::ptrdiff_t>(frictions.size()),
-                      frictions.push_back(friction_row(rows.size(), r, in_plane_of(c.point, c.normal, centre), mu, motion));
-          rows.push_back(r);
+          g.rows.push_back(r);
+          g.point.push_back(c.point);
         }
+      }
+      return g;
+    }
+
+    // The positional correction alone, for pairs a response left deeper than
+    // the tolerance (time_of_impact "none": CollisionStep::push_out): each
+    // such pair pushed to tol/4, every other pair of `hits` held from
+    // approaching. No impulse and no warm start: the velocities are the
+    // response's.
+    void push_out(const Model& m, std::span<double> y, BodyIndices world, std::span<const PairHit> hits,
+                  Profile& profile) const {
+      ScopedStage timed(profile, Stage::response);
+      const Gathered g = gather(m, y, world, hits);
+      std::vector<char> correct(hits.size(), 0);
+      for (std::size_t hi = 0; hi < hits.size(); ++hi) correct[hi] = hits[hi].sat.depth > setup.settings.penetration_tolerance;
+      correct_positions(m, y, g.rows, g.motion, g.body_of, correct);
+    }
+
+    void respond(const Model& m, std::span<double> y, BodyIndices world, std::span<const PairHit> hits, double dt,
+                 Profile& profile) const {
+      ScopedStage timed(profile, Stage::response);
+      Gathered g = gather(m, y, world, hits);
+      Motions& motion = g.motion;
+      const std::vector<int>& body_of = g.body_of;
+      std::vector<Row>& rows = g.rows;
+      std::vector<Friction> frictions;  // none unless a pair has μ > 0
+      std::vector<char> resting_pair(hits.size(), 0);
+      // Each pair's contact plane: through its points' centroid, normal to n.
+      std::vector<Vec3> centre(hits.size(), Vec3::Zero());
+      for (std::size_t hi = 0; hi < hits.size(); ++hi) {
+        for (const auto& c : hits[hi].features) centre[hi] += c.point;
+        if (!hits[hi].features.empty()) centre[hi] /= static_cast<double>(hits[hi].features.size());
+      }
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        Row& r = rows[k];
+        const double eps = std::min(setup.restitution[r.a], setup.restitution[r.b]);
+        // Box2D's mixing rule, √(μ_a μ_b) (Bullet multiplies by default; its run
+        // is hooked to the same √, compare/bullet_world.cpp).
+        const double mu = std::sqrt(setup.friction[r.a] * setup.friction[r.b]);
+        r.before = normal_velocity(r, motion);
+        const bool resting = r.before < 0 && -r.before <= setup.resting_speed;
+        counters.resting_contacts += resting;
+        resting_pair[r.hit] |= resting;
+        r.target = r.before < 0 ? -(resting ? 0.0 : eps) * r.before : 0.0;
+        if (mu > 0) r.friction = static_cast<std::ptrdiff_t>(frictions.size()),
+                    frictions.push_back(friction_row(k, r, in_plane_of(g.point[k], r.n, centre[r.hit]), mu, motion));
       }
       for (std::size_t k = 0, begin = 0; k < rows.size(); ++k)  // each pair's rows are consecutive
         if (k + 1 == rows.size() || rows[k + 1].hit != rows[k].hit) {

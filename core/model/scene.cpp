@@ -598,7 +598,8 @@ class Loader {
       else if (m == "illinois") c.time_of_impact = TimeOfImpact::illinois;
       else if (m == "golden_section") c.time_of_impact = TimeOfImpact::golden_section;
       else if (m == "conservative_advancement") c.time_of_impact = TimeOfImpact::conservative_advancement;
-      else x->expected("\"bisection\", \"illinois\", \"golden_section\" or \"conservative_advancement\"");
+      else if (m == "none") c.time_of_impact = TimeOfImpact::none;
+      else x->expected("\"bisection\", \"illinois\", \"golden_section\", \"conservative_advancement\" or \"none\"");
     }
     if (auto x = o.opt("impact_motion")) {
       const std::string m = str(*x);

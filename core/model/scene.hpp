@@ -68,7 +68,12 @@ struct AttractionToPoint { Vec3 point{0, 0, 0}; double D = 0; double softening =
 //   time_of_impact: how a time of impact is searched for (core/collision/time_of_impact.hpp):
 //     "bisection" (§2.5.1, the report's), "illinois" (a bracketing root finder
 //     on the separating-axis depth, §4.3's future work), "golden_section"
-//     (§4.3.1's line search) or "conservative_advancement" (Mirtich's).
+//     (§4.3.1's line search), "conservative_advancement" (Mirtich's) or
+//     "none": no search. An impact is then taken where the step (or a fast
+//     island's sub-step) ends, up to one step's travel deep, and the
+//     response's correction pushes the pair back (Box2D's and Bullet's way):
+//     the penetration tolerance holds at the end of each step's response, not
+//     between steps. What accuracy costs in a pile (bench/scale/scale.py).
 //   impact_motion: where the search's trial poses come from: "integrate"
 //     (default; the island re-integrated to each trial time, §2.5.1) or
 //     "interpolate" (each body's pose interpolated between the ends of the
@@ -83,7 +88,7 @@ struct AttractionToPoint { Vec3 point{0, 0, 0}; double D = 0; double softening =
 //     pairs (core/collision/broadphase.hpp): "aabb_tree" (default; a dynamic tree of
 //     boxes with persistent pairs), "sphere_tree" (the same tree over the
 //     backend's spheres, §4.2.2) or "sweep" (sort and sweep on one axis).
-enum class TimeOfImpact { bisection, illinois, golden_section, conservative_advancement };
+enum class TimeOfImpact { bisection, illinois, golden_section, conservative_advancement, none };
 enum class ImpactMotion { integrate, interpolate };
 enum class ContactMethod { manifold, report };
 enum class BroadphaseMethod { sweep, aabb_tree, sphere_tree };
