@@ -208,6 +208,23 @@ TEST(Sanity, AFixedStepBackendMayDipOneStepsTravel) {
   EXPECT_NEAR(l.bound, 10 * kTol + 4e-3, 1e-12);
 }
 
+// The same dip in our own run: allowed only where the scene asks for no
+// impact search (time_of_impact "none"), by its collision step's travel.
+TEST(Sanity, ARunWithoutASearchMayDipOneCollisionStepsTravel) {
+  auto scene = slab_scene();
+  const auto dip = [](std::size_t, double t) { return State{{0, 0, 0.1 - (t > 0.05 ? 3e-3 : 0.0)}, {0, 0, -4}}; };
+  EXPECT_TRUE(fails(compare::penetration_check(scene, make_run(scene, 0.1, dip))));
+  std::get<core::Collisions>(scene.effects[1]).time_of_impact = core::TimeOfImpact::none;
+  const CheckLine l = compare::penetration_check(scene, make_run(scene, 0.1, dip));
+  EXPECT_TRUE(passes(l)) << l.note;
+  EXPECT_NEAR(l.bound, 10 * kTol + 4e-3, 1e-12);
+  EXPECT_NE(l.note.find("without a time of impact"), std::string::npos) << l.note;
+  // Twice that is not a step's travel.
+  const CheckLine deeper = compare::penetration_check(
+      scene, make_run(scene, 0.1, [](std::size_t, double t) { return State{{0, 0, 0.1 - (t > 0.05 ? 6e-3 : 0.0)}, {0, 0, -4}}; }));
+  EXPECT_TRUE(fails(deeper)) << deeper.note;
+}
+
 TEST(Sanity, ARestingBodyDriftingSidewaysFails) {
   const auto scene = slab_scene();
   // Moved sideways by 1 µm per sample with zero velocity: a teleport.
