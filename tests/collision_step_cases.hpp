@@ -445,7 +445,7 @@ TYPED_TEST_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance) {
 
 // The same box with time_of_impact "none": no search, so an impact is taken
 // where its step ends, up to one step's travel deep, and pushed out by the
-// response and the passes after it (collision_step.hpp, push_out). What
+// response and the passes after it (core/collision/push_out_step.hpp). What
 // holds: no sample (each after its step's response) shows a body deeper than
 // the sanity rule's bound for a method without a search, ten tolerances plus
 // one step's travel at its speed then or at the sample before

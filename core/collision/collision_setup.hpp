@@ -30,7 +30,7 @@ struct CollisionCounters {
   std::uint64_t impact_pairs_deep_at_start = 0;
   // Without a search (time_of_impact "none"): the detections that checked a
   // response's correction, and the islands left deeper than the tolerance
-  // after every pass (collision_step.hpp, push_out).
+  // after every pass (push_out_step.hpp).
   std::uint64_t push_out_detections = 0, push_out_left_deep = 0;
   std::uint64_t contacts = 0, impulses = 0, resting_contacts = 0, sweeps = 0, corrections = 0;
   std::uint64_t warm_started = 0, sweep_cap_hits = 0, correction_cap_hits = 0, unresolved_impacts = 0;

@@ -49,6 +49,7 @@
 // the reach.
 #include "core/collision/collisions.hpp"
 #include "core/collision/islands.hpp"
+#include "core/collision/push_out_step.hpp"
 #include "core/collision/sleep.hpp"
 #include "core/collision/subsystem.hpp"
 #include "core/collision/time_of_impact_step.hpp"
@@ -73,10 +74,6 @@ inline constexpr int kMaxIslandSteps = 1000000;
 // sphere test resolves: a sphere grown to 1e9 m beside a 1 m one carries
 // ½ρ² ≈ 5e17 next to the pair's ~1 m², and cga then missed the pair.
 inline constexpr double kLeastSubStep = 1e-6;
-// Detections and corrections after a response that left a pair too deep,
-// without a search (CollisionStep::push_out); Box2D v2 ran three position
-// iterations. A pair still too deep after them is the next step's.
-inline constexpr int kPushOutPasses = 4;
 
 template <class C>
 class CollisionStep {
@@ -175,8 +172,8 @@ class CollisionStep {
       double most = 0;  // the island's longest reach in the step
       for (std::size_t i = 0; i < is.moving; ++i) most = std::max(most, margin[is.bodies[i]]);
       if ((deepest <= tol || !searched()) && most <= 0.5 * setup.min_inradius) {
-        if (!hits[k].empty()) c_.respond(s_, m_, y, setup.all_bodies, hits[k], h, profile);
-        if (!searched() && deepest > tol) push_out(is, d.candidates, y, t1, profile);
+        if (!searched() && deepest > tol) respond_and_push_out(is, d.candidates, hits[k], y, h, t1, profile);
+        else if (!hits[k].empty()) c_.respond(s_, m_, y, setup.all_bodies, hits[k], h, profile);
         continue;
       }
       s_.counters.local_islands_deep += deepest > tol && searched();
@@ -291,11 +288,17 @@ class CollisionStep {
         fail_if_nonfinite(a, ys, "time_of_impact", accepted);
         d = c_.detect_among(s_, a.model, ys, a.group, among, profile);
       }
+      const bool push = !searched() && d.max_depth > tol;
+      if (push) yb = ys;  // the state before the response
       if (!d.hits.empty()) {
         c_.respond(s_, a.model, ys, a.group, d.hits, accepted - t, profile);
         fail_if_nonfinite(a, ys, "response", accepted);
       }
-      if (!searched() && d.max_depth > tol) push_out_among(a, among, ys, accepted, profile);
+      if (push) {
+        std::vector<PairDepth> depths;
+        for (const auto& hit : d.hits) depths.push_back({hit.a, hit.b, hit.sat.depth});
+        push_out(a, among, depths, yb, ys, accepted, profile);
+      }
       t = accepted;
     }
     a.scatter(ys, y);
@@ -325,35 +328,28 @@ class CollisionStep {
     return among;
   }
 
-  // Without a search (time_of_impact "none"), after an island's response at
-  // t1 that met a pair deeper than the tolerance. The response's correction
-  // is linear: one displacement from the contacts found before it. Lifting a
-  // deep vertex turns the body, and a turn of a few hundredths of a radian
-  // drives its neighbouring vertices into the face it left, or into a body
-  // it was not touching (in the crowded box of CollisionStepCases, a body
-  // 4.2 mm deep in a wall was left 0.4 mm deep, and bodies stayed deeper
-  // than the tolerance for several steps). So the island is detected again
-  // and pushed out again, Box2D v2's nonlinear position iterations in spirit:
-  // up to kPushOutPasses detections, each followed by a correction alone.
-  void push_out(const Island& is, const std::vector<std::pair<int, int>>& candidates, std::span<double> y, double t1,
-                Profile& profile) const {
+  // Without a search (time_of_impact "none"): an island's response at t1
+  // that met a pair deeper than the tolerance, then its push-out
+  // (core/collision/push_out_step.hpp) on the island alone. `hits`: the
+  // island's, in the world's numbering.
+  void respond_and_push_out(const Island& is, const std::vector<std::pair<int, int>>& candidates,
+                            std::span<const PairHit> hits, std::span<double> y, double h, double t1,
+                            Profile& profile) const {
     const std::size_t stride = Bodies::state_size(m_) / c_.setup.all_bodies.size();
     Subsystem<Bodies> a(m_, is.bodies, stride, c_.setup.solver);
+    const std::vector<double> before = a.gather(y);
+    c_.respond(s_, m_, y, c_.setup.all_bodies, hits, h, profile);
     std::vector<double> ys = a.gather(y);
-    push_out_among(a, island_pairs(is, candidates), ys, t1, profile);
+    std::vector<PairDepth> depths;
+    for (const auto& hit : hits) depths.push_back({local_index(is, hit.a), local_index(is, hit.b), hit.sat.depth});
+    push_out(a, island_pairs(is, candidates), depths, before, ys, t1, profile);
     a.scatter(ys, y);
   }
-  void push_out_among(const Subsystem<Bodies>& a, const std::vector<std::pair<int, int>>& among, std::vector<double>& ys,
-                      double t, Profile& profile) const {
-    const double tol = c_.setup.settings.penetration_tolerance;
-    for (int pass = 0;; ++pass) {
-      const Detection d = c_.detect_among(s_, a.model, ys, a.group, among, profile);
-      ++s_.counters.push_out_detections;
-      if (!(d.max_depth > tol)) return;
-      if (pass == kPushOutPasses) return ++s_.counters.push_out_left_deep, void();
-      c_.push_out(s_, a.model, ys, a.group, d.hits, profile);
-      fail_if_nonfinite(a, ys, "response", t);
-    }
+  void push_out(const Subsystem<Bodies>& a, const std::vector<std::pair<int, int>>& among,
+                std::span<const PairDepth> depths, const std::vector<double>& before, std::vector<double>& ys, double t,
+                Profile& profile) const {
+    PushOutStep<C>(c_, s_).run(a, among, depths, before, ys, profile,
+                               [&](const std::vector<double>& state) { fail_if_nonfinite(a, state, "response", t); });
   }
 
   // The island's hits at t1 from the world's detection, in its own numbering

@@ -945,7 +945,7 @@ class ContactSolver {
     }
 
     // The positional correction alone, for pairs a response left deeper than
-    // the tolerance (time_of_impact "none": CollisionStep::push_out): each
+    // the tolerance (time_of_impact "none": core/collision/push_out_step.hpp): each
     // such pair pushed to tol/4, every other pair of `hits` held from
     // approaching. No impulse and no warm start: the velocities are the
     // response's.

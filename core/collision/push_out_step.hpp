@@ -1,0 +1,119 @@
+#pragma once
+// The response's push-out without an impact search (the collisions effect's
+// time_of_impact "none", core/collision/collision_step.hpp decides when).
+//
+// Without a search an impact is taken where its step ends, millimetres deep,
+// and the response's correction is one linear projection computed from the
+// contacts found before it. Lifting a deep vertex turns the body, and a turn
+// of a few hundredths of a radian drives its neighbouring vertices into the
+// face it left, or into a body it was not touching: in the crowded box of
+// CollisionStepCases a body 4.2 mm deep in a wall was left 0.4 mm deep, and
+// bodies stayed deeper than the tolerance for several steps. So the island
+// is detected again and pushed out again (the correction alone, no impulse:
+// ContactSolver::push_out), up to kPushOutPasses times: Box2D v2's position
+// iterations, which measure each separation again, in spirit.
+//
+// Which pairs each detection tests: a pair's depth can grow only by how far
+// its bodies moved since it was measured. A point of a body moves by at most
+// |Δc| + ‖ΔR‖₂ r (c its bounding sphere's centre, r the radius; the spectral
+// norm is at most the Frobenius one), so each pair carries an upper bound of
+// its depth: measured at its last test (0 for a pair found apart), raised by
+// both bodies' motion at every response or correction since. Only the pairs
+// whose bound exceeds the tolerance are tested. In a pile, where every body
+// of an island of thousands touches another, testing every pair of the
+// island after every deep response cost most of the run.
+#include "core/collision/collisions.hpp"
+#include "core/collision/subsystem.hpp"
+#include "core/stage.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace gacompare::core {
+
+// Detections and corrections after a response that left a pair too deep;
+// Box2D v2 ran three position iterations. A pair still too deep after them is
+// the next step's, and counted (push_out_left_deep).
+inline constexpr int kPushOutPasses = 4;
+
+// A pair of an island (its own numbering) and its depth where last measured.
+struct PairDepth {
+  int a, b;
+  double depth;
+};
+
+template <class C>
+class PushOutStep {
+ public:
+  using Bodies = typename C::BodiesType;
+  using State = typename C::State;
+  using Pairs = std::vector<std::pair<int, int>>;
+
+  PushOutStep(const C& c, State& state) : c_(c), s_(state) {}
+
+  // The island `a` (its candidate pairs `among`, sorted, in its numbering)
+  // after a response at time t: `hits` its pairs in contact before the
+  // response, `before` its state then, `ys` its state after, pushed out on
+  // return. `check` is called on the state after every correction (it throws
+  // on a non-finite one).
+  void run(const Subsystem<Bodies>& a, const Pairs& among, std::span<const PairDepth> hits,
+           const std::vector<double>& before, std::vector<double>& ys, Profile& profile,
+           const std::function<void(const std::vector<double>&)>& check) const {
+    const double tol = c_.setup.settings.penetration_tolerance;
+    const auto index = [&](int i, int j) {
+      const auto at = std::lower_bound(among.begin(), among.end(), std::pair(std::min(i, j), std::max(i, j)));
+      return at != among.end() && *at == std::pair(std::min(i, j), std::max(i, j)) ? at - among.begin() : -1;
+    };
+    std::vector<double> bound(among.size(), 0.0);  // each pair's depth at most
+    for (const auto& h : hits)
+      if (const auto k = index(h.a, h.b); k >= 0) bound[static_cast<std::size_t>(k)] = h.depth;
+    raise(a, bound, among, before, ys);
+    Pairs pairs;
+    for (int pass = 0;; ++pass) {
+      pairs.clear();
+      for (std::size_t k = 0; k < among.size(); ++k)
+        if (bound[k] > tol) pairs.push_back(among[k]);
+      if (pairs.empty()) return;
+      const Detection d = c_.detect_among(s_, a.model, ys, a.group, pairs, profile);
+      ++s_.counters.push_out_detections;
+      for (const auto& p : pairs) bound[static_cast<std::size_t>(index(p.first, p.second))] = 0;
+      for (const auto& h : d.hits) bound[static_cast<std::size_t>(index(h.a, h.b))] = h.sat.depth;
+      if (!(d.max_depth > tol)) return;
+      if (pass == kPushOutPasses) return ++s_.counters.push_out_left_deep, void();
+      const std::vector<double> pushed = ys;
+      c_.push_out(s_, a.model, ys, a.group, d.hits, profile);
+      check(ys);
+      raise(a, bound, among, pushed, ys);
+    }
+  }
+
+ private:
+  // Every pair's bound raised by how far its two bodies moved from `from` to `to`.
+  void raise(const Subsystem<Bodies>& a, std::vector<double>& bound, const Pairs& among, const std::vector<double>& from,
+             const std::vector<double>& to) const {
+    const auto& setup = c_.setup;
+    std::vector<double> moved(a.group.size(), 0.0);
+    for (std::size_t k = 0; k < a.group.size(); ++k) {
+      if (std::equal(from.begin() + static_cast<long>(k * a.stride), from.begin() + static_cast<long>((k + 1) * a.stride),
+                     to.begin() + static_cast<long>(k * a.stride)))
+        continue;  // untouched: most bodies of a large island
+      const collision::Pose p0 = Bodies::pose(a.model, from, k), p1 = Bodies::pose(a.model, to, k);
+      const Vec3& c = setup.sphere_centre[static_cast<std::size_t>(a.group[k])];
+      // A margin for the rounding of the poses and of the sum (far below the
+      // tolerance): a bound that errs, errs towards testing.
+      moved[k] = ((p1.apply(c) - p0.apply(c)).norm() +
+                  setup.sphere_radius[static_cast<std::size_t>(a.group[k])] * (p1.rotation - p0.rotation).norm()) *
+                     (1 + 1e-9) +
+                 1e-15;
+    }
+    for (std::size_t k = 0; k < among.size(); ++k)
+      bound[k] += moved[static_cast<std::size_t>(among[k].first)] + moved[static_cast<std::size_t>(among[k].second)];
+  }
+
+  const C& c_;
+  State& s_;
+};
+
+}  // namespace gacompare::core
