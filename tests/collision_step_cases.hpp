@@ -315,23 +315,32 @@ TYPED_TEST_P(CollisionStepCases, TwoThreadsGiveTheSameRunBitForBit) {
     s.bodies.push_back(b);
   }
   s.duration = 0.4;
-  core::set_threads(1);
-  const core::Run one = core::simulate<TypeParam>(s);
-  core::set_threads(2);
-  const core::Run two = core::simulate<TypeParam>(s);
-  core::set_threads(1);
-  ASSERT_FALSE(one.error || two.error) << (one.error ? *one.error : *two.error);
-  ASSERT_GT(one.counters.at("contacts"), 0u);
-  ASSERT_EQ(one.samples.size(), two.samples.size());
-  for (std::size_t k = 0; k < one.samples.size(); ++k)
-    for (std::size_t i = 0; i < one.samples[k].bodies.size(); ++i) {
-      const auto &a = one.samples[k].bodies[i], &b = two.samples[k].bodies[i];
-      ASSERT_EQ(a.position, b.position) << "t=" << one.samples[k].t << " body " << i;
-      ASSERT_EQ(a.orientation, b.orientation) << "t=" << one.samples[k].t << " body " << i;
-      ASSERT_EQ(a.velocity, b.velocity) << "t=" << one.samples[k].t << " body " << i;
-      ASSERT_EQ(a.angular_velocity, b.angular_velocity) << "t=" << one.samples[k].t << " body " << i;
+  // With every impact searched, and without a search (the push-out's passes).
+  for (const auto method : {core::TimeOfImpact::bisection, core::TimeOfImpact::none}) {
+    SCOPED_TRACE(method == core::TimeOfImpact::none ? "time_of_impact none" : "bisection");
+    for (auto& e : s.effects)
+      if (auto* c = std::get_if<core::Collisions>(&e)) c->time_of_impact = method;
+    core::set_threads(1);
+    const core::Run one = core::simulate<TypeParam>(s);
+    core::set_threads(2);
+    const core::Run two = core::simulate<TypeParam>(s);
+    core::set_threads(1);
+    ASSERT_FALSE(one.error || two.error) << (one.error ? *one.error : *two.error);
+    ASSERT_GT(one.counters.at("contacts"), 0u);
+    if (method == core::TimeOfImpact::none) {
+      ASSERT_GT(one.counters.at("push_out_detections"), 0u);
     }
-  EXPECT_EQ(one.counters, two.counters);
+    ASSERT_EQ(one.samples.size(), two.samples.size());
+    for (std::size_t k = 0; k < one.samples.size(); ++k)
+      for (std::size_t i = 0; i < one.samples[k].bodies.size(); ++i) {
+        const auto &a = one.samples[k].bodies[i], &b = two.samples[k].bodies[i];
+        ASSERT_EQ(a.position, b.position) << "t=" << one.samples[k].t << " body " << i;
+        ASSERT_EQ(a.orientation, b.orientation) << "t=" << one.samples[k].t << " body " << i;
+        ASSERT_EQ(a.velocity, b.velocity) << "t=" << one.samples[k].t << " body " << i;
+        ASSERT_EQ(a.angular_velocity, b.angular_velocity) << "t=" << one.samples[k].t << " body " << i;
+      }
+    EXPECT_EQ(one.counters, two.counters);
+  }
 }
 
 // A crowded box (the scale benchmark's bodies_in_box grown to 343 mixed
@@ -479,7 +488,41 @@ TYPED_TEST_P(CollisionStepCases, CrowdedBoxWithoutASearchStaysWithinOneStepsTrav
   EXPECT_GT(run.counters.at("push_out_detections"), 1000u);  // the impacts it took too deep
 }
 
+// What the search buys beyond depth: an elastic bounce (restitution 1) keeps
+// its energy when its impact is found within the tolerance, and gains
+// energy without a search, because the push-out lifts the ball out of the
+// floor but leaves it the speed it gained while sinking (every bounce adds
+// about m |g| times the depth). The sanity rule on energy catches it
+// (compare/sanity.hpp); a push-out that kept the energy would be an
+// improvement, and then this test and docs/collision-response.md
+// ("Without a search") change with it.
+TYPED_TEST_P(CollisionStepCases, AnElasticBounceKeepsItsEnergyOnlyWithASearch) {
+  core::Scene s = core::load_scene(std::filesystem::path(GACOMPARE_DATA_DIR) / "scenes" / "sphere_bounce.json");
+  core::Collisions* collisions = nullptr;
+  for (auto& e : s.effects)
+    if (auto* c = std::get_if<core::Collisions>(&e)) collisions = c;
+  ASSERT_NE(collisions, nullptr);
+  collisions->restitution = 1;
+  for (auto& b : s.bodies) b.restitution.reset();
+  const auto rise = [&](core::TimeOfImpact method) {
+    collisions->time_of_impact = method;
+    const core::Run run = core::simulate<TypeParam>(s);
+    EXPECT_FALSE(run.error);
+    double lowest = INFINITY, most = 0;
+    for (const auto& sample : run.samples) {
+      const double e = sample.kinetic + sample.potential;
+      lowest = std::min(lowest, e), most = std::max(most, e - lowest);
+    }
+    return most;
+  };
+  // Searched: rounding (1.3e-13 J measured on a ball of about 10 J); without:
+  // 0.021 J measured, the ball lifted about a millimetre at each bounce.
+  EXPECT_LT(rise(core::TimeOfImpact::bisection), 1e-9);
+  EXPECT_GT(rise(core::TimeOfImpact::none), 1e-3);
+}
+
 REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance,
+                            AnElasticBounceKeepsItsEnergyOnlyWithASearch,
                             CrowdedBoxWithoutASearchStaysWithinOneStepsTravel, TwoThreadsGiveTheSameRunBitForBit, FarApartIslandsGiveWhatEachGivesAlone,
                             StepLimitOnlyWhereThereIsSomethingToHit, BodyTooFastForAnyStepStopsTheRunNamingIt,
                             StaticBoxFilterKeepsEveryPairInContact, ImpactTrialsIntegrateOnlyTheDeepPairsBodies,
