@@ -3,13 +3,16 @@
 //
 //   time_of_impact_sweep [repeats=3] [scene names...]
 //     the bundled drops with tolerances 1e-3 … 1e-7 m through bisection and
-//     Illinois: what a tighter penetration tolerance costs;
+//     Illinois, and without a search (time_of_impact "none": each impact
+//     taken where its step ends and pushed out): what a tighter penetration
+//     tolerance costs, and what the search costs at each;
 //   time_of_impact_sweep --methods [repeats=3] [scene names...]
 //     each scene at its own tolerance through the four searches of
 //     core/collision/time_of_impact.hpp (bisection, Illinois, golden section,
 //     conservative advancement) with both motions (the island re-integrated
 //     per trial, or interpolated in each backend's algebra: quaternion slerp
-//     or rotor power along a line, then integrated once).
+//     or rotor power along a line, then integrated once), and without a
+//     search (one row: no motion to choose).
 //
 // Per cell and backend: impact searches, depth trials and island integrations
 // per search, interpolation misses (the time found by interpolation not in the
@@ -104,9 +107,10 @@ int main(int argc, char** argv) {
                            core::TimeOfImpact::conservative_advancement})
         for (const auto motion : {core::ImpactMotion::integrate, core::ImpactMotion::interpolate})
           settings.push_back({tolerance_of(base), m, motion});
+      settings.push_back({tolerance_of(base), core::TimeOfImpact::none, core::ImpactMotion::integrate});
     } else {
       for (const double tol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7})
-        for (const auto m : {core::TimeOfImpact::bisection, core::TimeOfImpact::illinois})
+        for (const auto m : {core::TimeOfImpact::bisection, core::TimeOfImpact::illinois, core::TimeOfImpact::none})
           settings.push_back({tol, m, core::ImpactMotion::integrate});
     }
     for (const auto& x : settings) {
@@ -116,7 +120,10 @@ int main(int argc, char** argv) {
         const double searches = static_cast<double>(k.at("impact_searches"));
         const auto per = [&](const char* what) { return searches ? static_cast<double>(k.at(what)) / searches : 0.0; };
         std::printf("| %s | %.0e | %s | %s | %s | %.0f | %.2f | %.2f | %llu | %llu | %.2f | %.1f |\n", name.c_str(), x.tol,
-                    method_name(x.method), x.motion == core::ImpactMotion::integrate ? "integrate" : "interpolate",
+                    method_name(x.method),
+                    x.method == core::TimeOfImpact::none                 ? "–"
+                    : x.motion == core::ImpactMotion::integrate ? "integrate"
+                                                                : "interpolate",
                     backend.c_str(), searches, per("impact_iterations"), per("impact_state_evaluations"),
                     static_cast<unsigned long long>(k.at("impact_interpolation_misses")),
                     static_cast<unsigned long long>(k.at("impact_searches_unresolved")),

@@ -25,9 +25,12 @@
 //      response; then its state at t1 replaces the world's.
 //   With the scene's time_of_impact "none", depth alone never sends an island
 //   to step 4 and no sub-step searches: a pair deeper than the tolerance is
-//   taken where its step (or sub-step) ends, and the contact solver's
-//   correction pushes it back into the band. Only the fast islands are still
-//   sub-stepped, so that no body passes through a thin one.
+//   taken where its step (or sub-step) ends, and the response and the
+//   push-out (core/collision/push_out_step.hpp) put it back into the band.
+//   Only the fast islands are still sub-stepped, so that no body passes
+//   through a thin one. With a search, a sub-step whose response still met a
+//   pair too deep (one the search could not put in the band) is pushed out
+//   the same way.
 //
 // What this changes against the report's loop, which ended every body's step
 // at the first time of impact anywhere and rewound the whole world for every
@@ -43,7 +46,9 @@
 // they were not linked to (of another island, or of their own: within its
 // step an island tests only its candidate pairs, not a fresh broadphase);
 // that pair is found at t1, deeper than the tolerance, and the next step
-// resolves it like any pair already too deep at its start. Growing the links
+// resolves it like any pair already too deep at its start (its search leaves
+// the pair out, and the push-out after the response takes it back into the
+// band). Growing the links
 // to twice the reach, which would cover a body sent back as fast as it came,
 // made islands larger and runs slower with the same impacts, so the links are
 // the reach.
@@ -288,7 +293,10 @@ class CollisionStep {
         fail_if_nonfinite(a, ys, "time_of_impact", accepted);
         d = c_.detect_among(s_, a.model, ys, a.group, among, profile);
       }
-      const bool push = !searched() && d.max_depth > tol;
+      // Deep after the response's time: always without a search; with one,
+      // a pair the search could not put in the band (already too deep at the
+      // sub-step's start, or a search left unresolved).
+      const bool push = d.max_depth > tol;
       if (push) yb = ys;  // the state before the response
       if (!d.hits.empty()) {
         c_.respond(s_, a.model, ys, a.group, d.hits, accepted - t, profile);

@@ -1,6 +1,10 @@
 #pragma once
-// The response's push-out without an impact search (the collisions effect's
-// time_of_impact "none", core/collision/collision_step.hpp decides when).
+// The response's push-out, for a response that met a pair deeper than the
+// tolerance (core/collision/collision_step.hpp decides when): every deep
+// impact without an impact search (the collisions effect's time_of_impact
+// "none"), and with one the pairs the search could not put in the band (a
+// pair already too deep when its sub-step began, which an impulse sent into
+// a body it was not linked to; a search left unresolved).
 //
 // Without a search an impact is taken where its step ends, millimetres deep,
 // and the response's correction is one linear projection computed from the
