@@ -464,9 +464,7 @@ TYPED_TEST_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance) {
 // bound) and bodies stayed deeper than the tolerance for many steps.
 TYPED_TEST_P(CollisionStepCases, CrowdedBoxWithoutASearchStaysWithinOneStepsTravel) {
   core::Scene s = crowded_box(this->drop());
-  core::Collisions* collisions = nullptr;
-  for (auto& e : s.effects)
-    if (auto* c = std::get_if<core::Collisions>(&e)) collisions = c;
+  core::Collisions* collisions = s.find_effect<core::Collisions>();
   ASSERT_NE(collisions, nullptr);
   collisions->time_of_impact = core::TimeOfImpact::none;
   const double tol = collisions->penetration_tolerance, h = collisions->step;
@@ -498,9 +496,7 @@ TYPED_TEST_P(CollisionStepCases, CrowdedBoxWithoutASearchStaysWithinOneStepsTrav
 // ("Without a search") change with it.
 TYPED_TEST_P(CollisionStepCases, AnElasticBounceKeepsItsEnergyOnlyWithASearch) {
   core::Scene s = core::load_scene(std::filesystem::path(GACOMPARE_DATA_DIR) / "scenes" / "sphere_bounce.json");
-  core::Collisions* collisions = nullptr;
-  for (auto& e : s.effects)
-    if (auto* c = std::get_if<core::Collisions>(&e)) collisions = c;
+  core::Collisions* collisions = s.find_effect<core::Collisions>();
   ASSERT_NE(collisions, nullptr);
   collisions->restitution = 1;
   for (auto& b : s.bodies) b.restitution.reset();

@@ -256,8 +256,7 @@ class CollisionStep {
   void step_alone(const Island& is, const std::vector<std::pair<int, int>>& candidates, std::vector<PairHit>& at_t1,
                   std::span<double> y, std::span<const double> y0, double t0, double t1, Profile& profile) const {
     const auto& setup = c_.setup;
-    const std::size_t stride = Bodies::state_size(m_) / setup.all_bodies.size();
-    Subsystem<Bodies> a(m_, is.bodies, stride, setup.solver);
+    Subsystem<Bodies> a = subsystem_of(is);
     ++s_.counters.local_islands;
     s_.counters.local_island_bodies += is.moving;
     std::vector<double> ys = a.gather(y0), yb;
@@ -302,14 +301,25 @@ class CollisionStep {
         c_.respond(s_, a.model, ys, a.group, d.hits, accepted - t, profile);
         fail_if_nonfinite(a, ys, "response", accepted);
       }
-      if (push) {
-        std::vector<PairDepth> depths;
-        for (const auto& hit : d.hits) depths.push_back({hit.a, hit.b, hit.sat.depth});
-        push_out(a, among, depths, yb, ys, accepted, profile);
-      }
+      if (push) push_out(a, among, pair_depths(d.hits, [](int k) { return k; }), yb, ys, accepted, profile);
       t = accepted;
     }
     a.scatter(ys, y);
+  }
+
+  // An island's bodies as a model of their own, with the scene's solver.
+  Subsystem<Bodies> subsystem_of(const Island& is) const {
+    return Subsystem<Bodies>(m_, is.bodies, Bodies::state_size(m_) / c_.setup.all_bodies.size(), c_.setup.solver);
+  }
+
+  // Each hit's pair, in an island's numbering (`local` maps a hit's body
+  // index there), with its depth: what the push-out starts from.
+  template <class Local>
+  static std::vector<PairDepth> pair_depths(std::span<const PairHit> hits, Local&& local) {
+    std::vector<PairDepth> out;
+    out.reserve(hits.size());
+    for (const auto& hit : hits) out.push_back({local(hit.a), local(hit.b), hit.sat.depth});
+    return out;
   }
 
   // Body w of the world in an island's own numbering (its moving bodies, then
@@ -343,14 +353,12 @@ class CollisionStep {
   void respond_and_push_out(const Island& is, const std::vector<std::pair<int, int>>& candidates,
                             std::span<const PairHit> hits, std::span<double> y, double h, double t1,
                             Profile& profile) const {
-    const std::size_t stride = Bodies::state_size(m_) / c_.setup.all_bodies.size();
-    Subsystem<Bodies> a(m_, is.bodies, stride, c_.setup.solver);
+    Subsystem<Bodies> a = subsystem_of(is);
     const std::vector<double> before = a.gather(y);
     c_.respond(s_, m_, y, c_.setup.all_bodies, hits, h, profile);
     std::vector<double> ys = a.gather(y);
-    std::vector<PairDepth> depths;
-    for (const auto& hit : hits) depths.push_back({local_index(is, hit.a), local_index(is, hit.b), hit.sat.depth});
-    push_out(a, island_pairs(is, candidates), depths, before, ys, t1, profile);
+    push_out(a, island_pairs(is, candidates), pair_depths(hits, [&](int w) { return local_index(is, w); }), before, ys,
+             t1, profile);
     a.scatter(ys, y);
   }
   void push_out(const Subsystem<Bodies>& a, const std::vector<std::pair<int, int>>& among,

@@ -122,8 +122,7 @@ class ContactSolver {
 
   // The positional correction alone: each pair of `hits` deeper than the
   // tolerance pushed to tol/4, the others held from approaching; no impulse.
-  // For pairs a response left too deep (time_of_impact "none",
-  // core/collision/collision_step.hpp).
+  // For pairs a response left too deep (core/collision/push_out_step.hpp).
   void push_out(const CollisionSetup& setup, CollisionCounters& counters, const Model& m, std::span<double> y,
                 BodyIndices world, std::span<const PairHit> hits, Profile& profile) {
     Solve{setup, counters, cache_}.push_out(m, y, world, hits, profile);
@@ -945,9 +944,8 @@ class ContactSolver {
     }
 
     // The positional correction alone, for pairs a response left deeper than
-    // the tolerance (time_of_impact "none": core/collision/push_out_step.hpp): each
-    // such pair pushed to tol/4, every other pair of `hits` held from
-    // approaching. No impulse and no warm start: the velocities are the
+    // the tolerance (core/collision/push_out_step.hpp): each such pair pushed
+    // to tol/4, every other pair of `hits` held from approaching. No impulse and no warm start: the velocities are the
     // response's.
     void push_out(const Model& m, std::span<double> y, BodyIndices world, std::span<const PairHit> hits,
                   Profile& profile) const {

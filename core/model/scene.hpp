@@ -11,6 +11,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -298,6 +299,7 @@ struct Scene {
       if (auto* p = std::get_if<T>(&e)) return p;
     return nullptr;
   }
+  template <class T> T* find_effect() { return const_cast<T*>(std::as_const(*this).template find_effect<T>()); }
 };
 
 // Loads and validates a scene. Throws gacompare::Error (ErrorKind::input) with one
