@@ -236,12 +236,21 @@ class CollisionStep {
   // loose (a tetrahedron fills a small part of its sphere), and in a dense
   // scene their grown overlaps chain islands of thousands of bodies whose
   // every impact re-detects all their pairs.
+  // Both lists sorted, so one walk removes them: the candidates are, and the
+  // world's pairs apart come in the order the narrowphase took them, the
+  // broadphase's (sorted here only if not).
   void unlink_far(Detection& d) const {
     if (d.apart.empty()) return;
     std::vector<std::pair<int, int>> far = std::move(d.apart);
-    std::sort(far.begin(), far.end());
+    if (!std::is_sorted(far.begin(), far.end())) std::sort(far.begin(), far.end());
     s_.counters.links_apart += far.size();
-    std::erase_if(d.candidates, [&](const std::pair<int, int>& p) { return std::binary_search(far.begin(), far.end(), p); });
+    auto next = far.begin();
+    std::size_t kept = 0;
+    for (const auto& p : d.candidates) {
+      while (next != far.end() && *next < p) ++next;
+      if (next == far.end() || *next != p) d.candidates[kept++] = p;
+    }
+    d.candidates.resize(kept);
   }
 
   void fail_if_nonfinite(const Subsystem<Bodies>& a, const std::vector<double>& ys, const char* stage, double t) const {

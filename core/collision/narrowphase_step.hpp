@@ -26,48 +26,72 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   if (group.data() == setup.all_bodies.data()) state.hints.next(), state.kept.next();  // a new round of pairs
   // Each pair gets a slot of its own, so that the pairs can be tested on the
   // run's threads and come out the same for any number of them
-  // (core/parallel.hpp): first, on this thread, the slots, the bodies' shapes
-  // (each placed once, in parallel) and the pairs' remembered axes, and the
-  // kept contacts of pairs whose relative pose has stayed within their bound
-  // measured again (core/collision/kept_contacts.hpp: those pairs are not
-  // tested, and their bodies not placed for them); then the tests in
-  // parallel; then, in pair order, the hits, the links apart, the remembered
-  // axes, the contacts kept and the counters.
+  // (core/parallel.hpp):
+  //   1. on this thread, the slots (a < b in the world);
+  //   2. in parallel, each pair's own lookups: its kept contacts, measured
+  //      again where its relative pose has stayed within their bound
+  //      (core/collision/kept_contacts.hpp: those pairs are not tested, and
+  //      their bodies not placed for them), and its remembered axis;
+  //   3. on this thread, the bodies to place; then, in parallel, each placed
+  //      once;
+  //   4. in parallel, the tests, each writing back its pair's remembered axis
+  //      and kept contacts where its pair had them;
+  //   5. on this thread, in pair order, the pairs new to the memories, the
+  //      hits, the links apart and the counters.
+  // The memories are only read and rewritten in place (PairMemory::find)
+  // until step 5 adds the new pairs, so the entries found in step 2 stay
+  // where they are. Their lookups miss the cache at scale (the tables of
+  // 10,000 bodies' pairs are megabytes): on one thread, with each pair's
+  // axis looked up twice, they were a seventh of the 10,000-body box's run.
   struct Slot {
     PairHit h;
     collision::SatHint hint;
     collision::FaceChoice choice;
+    collision::SatHint* hint_entry = nullptr;       // the pair's remembered axis, if it has one
+    collision::KeptContacts* kept_entry = nullptr;  // its kept contacts, refused or not, if any
     bool apart = false, kept = false;
-    bool had_kept = false;  // the pair had a kept manifold, refused or not
     std::uint64_t face_tested = 0, shapes = 0;
   };
   std::vector<Slot> slots;
   slots.reserve(pairs.size());
-  std::vector<int> to_place;  // group indices whose world body is placed in this detection
-  std::size_t tested = 0;     // the slots tested (the rest had their kept contacts measured again)
   if (reuse && state.shapes.size() != setup.meshes.size())
     state.shapes.resize(setup.meshes.size()), state.placed_in.assign(setup.meshes.size(), 0);
   for (const auto& pair : pairs) {
     int i = pair.first, j = pair.second;
     if (setup.is_static[group[i]] && setup.is_static[group[j]]) continue;
     if (group[i] > group[j]) std::swap(i, j);  // a < b in the world: every group sees a pair the same way
-    ++state.counters.narrowphase_pairs;
-    if (group.data() != setup.all_bodies.data()) ++state.counters.island_narrowphase_pairs;
     slots.push_back({PairHit{i, j, {}, {}}, {}, {}});
-    const collision::KeptContacts* kept = keep ? state.kept.find(group[i], group[j]) : nullptr;
-    slots.back().had_kept = kept != nullptr;
-    if (kept && collision::refresh(*kept, *setup.meshes[group[i]], *setup.meshes[group[j]], pose[i], pose[j],
-                                   collision::kTouchingBand *
-                                       collision::pair_scale(*setup.meshes[group[i]], *setup.meshes[group[j]]),
-                                   slots.back().h.sat, slots.back().h.features)) {
-      slots.back().kept = true;
-      continue;
-    }
+  }
+  state.counters.narrowphase_pairs += slots.size();
+  if (group.data() != setup.all_bodies.data()) state.counters.island_narrowphase_pairs += slots.size();
+  // PairMemory::find on several threads at once: each writes only its own pair's entry.
+  for_each_index(
+      slots.size(),
+      [&](std::size_t u) {
+        Slot& s = slots[u];
+        const int wa = group[s.h.a], wb = group[s.h.b];
+        s.kept_entry = keep ? state.kept.find(wa, wb) : nullptr;
+        if (s.kept_entry && collision::refresh(*s.kept_entry, *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a],
+                                               pose[s.h.b],
+                                               collision::kTouchingBand *
+                                                   collision::pair_scale(*setup.meshes[wa], *setup.meshes[wb]),
+                                               s.h.sat, s.h.features)) {
+          s.kept = true;
+          return;
+        }
+        if (!reuse) return;
+        s.hint_entry = state.hints.find(wa, wb);
+        if (s.hint_entry) s.hint = *s.hint_entry;
+      },
+      kGrainPair);
+  std::vector<int> to_place;  // group indices whose world body is placed in this detection
+  std::size_t tested = 0;     // the slots tested (the rest had their kept contacts measured again)
+  for (const Slot& s : slots) {
+    if (s.kept) continue;
     ++tested;
     if (!reuse) continue;
-    for (const int k : {i, j})
+    for (const int k : {s.h.a, s.h.b})
       if (state.placed_in[group[k]] != state.detection) state.placed_in[group[k]] = state.detection, to_place.push_back(k);
-    slots.back().hint = state.hints.at(group[i], group[j]);
   }
   state.counters.narrowphase_shapes += to_place.size() + (reuse ? 0 : 2 * tested);
   // A shape builds its edges (and, for the report's detector, its prepared
@@ -86,6 +110,8 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
     shape.edges();
     if (report && !setup.meshes[group[k]]->triangles().empty()) shape.triangle(0);
   }, kGrainPlace);
+  // Whether a tested pair's contacts are kept (collision::keep, into its entry).
+  const auto keeps = [&](const Slot& s) { return keep && !s.kept && s.choice.made && !s.h.features.empty(); };
   for_each_index(
       slots.size(),
       [&](std::size_t u) {
@@ -96,12 +122,19 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
         if (reuse) {
           h.sat = collision::narrowphase<NarrowBody>(state.shapes[group[h.a]], state.shapes[group[h.b]], method,
                                                      &h.features, &s.hint, choice);
+          if (s.hint_entry) *s.hint_entry = s.hint;
         } else {
           // The shapes placed for this pair alone; the hint only written (an
           // empty one is read as none), for the kept contacts.
           const typename NarrowBody::Shape sa(placed(pose, group, h.a)), sb(placed(pose, group, h.b));
           h.sat = collision::narrowphase<NarrowBody>(sa, sb, method, &h.features, keep ? &s.hint : nullptr, choice);
         }
+        const int wa = group[h.a], wb = group[h.b];
+        if (keeps(s) && s.kept_entry)
+          collision::keep(*s.kept_entry, *setup.meshes[wa], *setup.meshes[wb], pose[h.a], pose[h.b], h.sat, s.hint,
+                          s.choice, h.features);
+        else if (s.kept_entry)
+          s.kept_entry->valid = false;
         // A pair within the touching band is in contact too (it has contacts):
         // its yes/no is rounding's (core/collision/collision.hpp), and a box resting
         // exactly on another fell for a step whenever it rounded to apart.
@@ -112,20 +145,17 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   for (Slot& s : slots) {
     state.counters.links_face_tested += s.face_tested;
     state.counters.narrowphase_shapes += s.shapes;
+    const int wa = group[s.h.a], wb = group[s.h.b];
     if (s.kept) {
       ++state.counters.contacts_kept;
-    } else if (keep) {
-      const int wa = group[s.h.a], wb = group[s.h.b];
-      if (s.choice.made && !s.h.features.empty()) {
-        collision::keep(state.kept.at(wa, wb), *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a], pose[s.h.b], s.h.sat,
-                        s.hint, s.choice, s.h.features);
-      } else if (s.had_kept) {
-        state.kept.find(wa, wb)->valid = false;  // found above; only this pair's at() adds it
+    } else {
+      if (keeps(s) && !s.kept_entry)
+        collision::keep(state.kept.at(wa, wb), *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a], pose[s.h.b],
+                        s.h.sat, s.hint, s.choice, s.h.features);
+      if (reuse) {
+        state.counters.narrowphase_axes_kept += s.hint.kept;
+        if (!s.hint_entry) state.hints.at(wa, wb) = s.hint;
       }
-    }
-    if (reuse && !s.kept) {
-      state.counters.narrowphase_axes_kept += s.hint.kept;
-      state.hints.at(group[s.h.a], group[s.h.b]) = s.hint;
     }
     if (!s.h.sat.intersect && s.h.features.empty()) {
       if (s.apart) d.apart.emplace_back(s.h.a, s.h.b);

@@ -52,7 +52,10 @@ class PairMemory {
   }
   // The pair (i, j)'s value if a detection of the last round or of this one
   // met it, else nullptr; adds nothing. A pair found counts as met in this
-  // round. The pointer holds until the next at() or next().
+  // round. The pointer holds until the next at() or next(). Safe on several
+  // threads at once for distinct pairs, with no at() or next() meanwhile: a
+  // lookup writes only its own pair's entry (its round), and reads of the
+  // other entries it probes stop at their keys.
   T* find(int i, int j) {
     if (keys_.empty()) return nullptr;
     const std::uint64_t k = key(i, j);
