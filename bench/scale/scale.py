@@ -7,6 +7,8 @@ Bullet, each stage's share, and the exponent p of cost ~ N^p.
   bench/scale/scale.py --binary build/release/compare/gacompare --long       # and 10,000 (tens of minutes)
   bench/scale/scale.py --sizes 27,125 --repeat 3 --out reports/scale
   bench/scale/scale.py --time-of-impact none                                 # the same boxes with no impact search
+  bench/scale/scale.py --sizes 125,1000,10000,100000 --time-of-impact none --threads 2 --every 0.5 \
+      --bullet-up-to 10000                                                   # to 100,000 bodies (half an hour)
 
 Every size runs as one `gacompare compare` of the three backends, which
 alternates their order in each repeat and quotes medians with min-max; the
@@ -14,6 +16,10 @@ table quotes those. The exponent is the least-squares slope of log(cost)
 against log(N) over the sizes from 125 up (the issue's range), with the
 slope between each pair of neighbouring sizes beside it. The scene files, each
 size's results folder and the table (scale.md, scale.json) go to --out.
+--threads is gacompare's (Bullet's world always runs on one thread);
+--bullet-up-to leaves Bullet out above that size; --every sets the samples
+(the penetration check reads them: 100,000 bodies' samples every 0.05 s
+would take 6.6 GB).
 """
 import argparse
 import datetime
@@ -45,7 +51,10 @@ def run_size(args, n):
     with open(path, "w") as f:
         json.dump(scene, f, indent=1)
     folder = os.path.join(args.out, f"box_{n}")
-    cmd = [args.binary, "compare", path, "--backends", args.backends, "--repeat", str(args.repeat), "--out", folder]
+    backends = [b for b in args.backends.split(",")
+                if b != "bullet" or args.bullet_up_to is None or n <= args.bullet_up_to]
+    cmd = [args.binary, "compare", path, "--backends", ",".join(backends), "--repeat", str(args.repeat),
+           "--threads", str(args.threads), "--out", folder]
     print(f"scale: N = {n}: {' '.join(cmd)}", file=sys.stderr, flush=True)
     done = subprocess.run(cmd, stdout=subprocess.PIPE, text=True)
     if not os.path.exists(os.path.join(folder, "results.json")):
@@ -98,10 +107,14 @@ def sanity(report):
 
 def table(args, sizes, data):
     backends = args.backends.split(",")
-    toi = f" --time-of-impact {args.time_of_impact}" if args.time_of_impact else ""
+    options = "".join(f" --{flag} {value}" for flag, value, default in (
+        ("time-of-impact", args.time_of_impact, None), ("threads", args.threads, 1), ("every", args.every, 0.05),
+        ("backends", args.backends, "traditional,cga,bullet"), ("bullet-up-to", args.bullet_up_to, None))
+        if value != default)
     out = [f"Command: `bench/scale/scale.py --sizes {','.join(map(str, sizes))} --repeat {args.repeat} "
-           f"--duration {args.duration} --seed {args.seed}{toi}` ({args.repeat} repeat(s) per size, median (min–max); "
-           f"{datetime.datetime.now(datetime.timezone.utc).strftime('%Y-%m-%d')}, {os.cpu_count()} cores).", "",
+           f"--duration {args.duration} --seed {args.seed}{options}` ({args.repeat} repeat(s) per size, median "
+           f"(min–max); {datetime.datetime.now(datetime.timezone.utc).strftime('%Y-%m-%d')}, {os.cpu_count()} cores, "
+           f"{args.threads} thread(s)).", "",
            "| N | " + " | ".join(f"{b} s per simulated s" for b in backends) + " | cga / traditional | traditional / bullet |",
            "|---:|" + "---:|" * (len(backends) + 2)]
     for n in sizes:
@@ -122,7 +135,7 @@ def table(args, sizes, data):
         out.append(f"- {b}: p = {p}" + (f" [{', '.join(steps)}]" if steps else ""))
     bound = ("ten penetration tolerances and one step's travel for every backend: none searches"
              if args.time_of_impact == "none" else "ten penetration tolerances; Bullet's adds one step's travel")
-    out += ["", "Physical sanity: the deepest any body went into a wall at a sample (every 0.05 s), against the "
+    out += ["", f"Physical sanity: the deepest any body went into a wall at a sample (every {args.every:g} s), against the "
             f"rule's bound ({bound}) — a run that fails it is wrong physics, and its time is no measure:", "",
             "| N | " + " | ".join(f"{b} (m)" for b in backends) + " |", "|---:|" + "---:|" * len(backends)]
     for n in sizes:
@@ -155,8 +168,14 @@ def main():
     ap.add_argument("--backends", default="traditional,cga,bullet")
     ap.add_argument("--time-of-impact", default=None,
                     help="the boxes' time_of_impact (box_scene.py); none: no impact search")
+    ap.add_argument("--threads", type=int, default=1, help="gacompare's --threads (Bullet runs on one)")
+    ap.add_argument("--bullet-up-to", type=int, default=None, help="run Bullet only on boxes of at most this many bodies")
     ap.add_argument("--out", default=None)
     args = ap.parse_args()
+    if args.threads < 1:
+        raise SystemExit("scale.py: --threads must be at least 1")
+    if not args.every > 0:
+        raise SystemExit("scale.py: --every must be positive")
     sizes = sorted({int(s) for s in args.sizes.split(",")} | ({10000} if args.long else set()))
     if args.out is None:
         args.out = os.path.join("reports", "scale-" + datetime.datetime.now().strftime("%Y%m%dT%H%M%S"))

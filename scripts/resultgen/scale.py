@@ -1,6 +1,7 @@
 """docs/results/scale.md: boxes of 27 to 1,000 bodies through traditional,
 cga and Bullet (bench/scale/scale.py), the same boxes with no impact search
-(scale.py --time-of-impact none), what the narrowphase's reuse saves
+(scale.py --time-of-impact none) and without a search to 100,000 bodies on
+two threads, what the narrowphase's reuse saves
 (bench/scale/reuse.py), what sleeping saves on a settled pile
 (bench/scale/sleep.py) and what a second thread buys (bench/scale/threads.py)."""
 import json
@@ -33,6 +34,19 @@ def generate(ctx):
         unsearched = strip_command_line(f.read())
     with open(os.path.join(out_none, "scale.json")) as f:
         data_none = json.load(f)
+    # To 100,000 bodies: without a search, on two threads, one repeat (about
+    # half an hour); Bullet, on one thread whatever --threads says, up to
+    # 10,000 only (at 100,000 it would take about an hour). Samples every
+    # 0.5 s: 100,000 bodies' samples every 0.05 s would take 6.6 GB.
+    large_args = ["--sizes", "125,1000" if ctx.quick else "125,1000,10000,100000", "--repeat", "1",
+                  "--time-of-impact", "none", "--threads", "2", "--every", "0.5", "--bullet-up-to", "10000"]
+    out_large = ctx.scratch_dir("scale-large")
+    ctx.run(["python3", "bench/scale/scale.py", "--binary", ctx.gacompare, *large_args, "--out", out_large],
+            quote=f"python3 bench/scale/scale.py --binary {ctx.gacompare} {' '.join(large_args)} --out DIR")
+    with open(os.path.join(out_large, "scale.md")) as f:
+        large = strip_command_line(f.read())
+    with open(os.path.join(out_large, "scale.json")) as f:
+        data_large = json.load(f)
     reuse_args = ["--sizes", "125,1000", "--repeat", "1" if ctx.quick else "3", "--duration", "0.2"]
     reuse = strip_command_line(ctx.run(["python3", "bench/scale/reuse.py", "--binary", ctx.gacompare, *reuse_args]))
     sleep_args = ["--sizes", "125,1000", "--repeat", "1" if ctx.quick else "3"]
@@ -71,6 +85,22 @@ def generate(ctx):
         if m:
             headline.append({"finding": f"Cost ∝ N^p from 125 bodies up, {m.group(1)}", "value": f"p = {m.group(2)}",
                              "anchor": "#bodies-in-a-box"})
+    most = str(max(data_large["sizes"]))
+    rl = data_large["results"][most]
+    cells = [f"{b} {rl[b]['per_simulated_second']:.3g} s" + (" (failed)" if rl[b]["error"] else "")
+             for b in ("traditional", "cga") if b in rl]
+    deep_large = [f"{b} {rl[b]['penetration']['value']} m" + ("" if rl[b]["penetration"]["pass"] else " (FAILS)")
+                  for b in ("traditional", "cga") if "penetration" in rl.get(b, {})]
+    if cells:
+        headline.append({"finding": f"{int(most):,} bodies in a box without a search, on two threads: run time per "
+                                    "simulated second, and the deepest any body went into a wall at a sample",
+                         "value": ", ".join(cells) + ("; " + ", ".join(deep_large) if deep_large else ""),
+                         "anchor": "#to-100000-bodies"})
+    exponents = [f"{m.group(1)} {m.group(2)}" for m in (re.match(r"- (traditional|cga): p = ([0-9.]+)", line)
+                                                       for line in large.splitlines()) if m]
+    if exponents:
+        headline.append({"finding": f"Cost ∝ N^p from 125 to {int(most):,} bodies without a search, on two threads",
+                         "value": "p = " + ", ".join(exponents), "anchor": "#to-100000-bodies"})
     thread_args = ["--sizes", "1000", "--repeat", "1" if ctx.quick else "3"]
     threads = strip_command_line(ctx.run(["python3", "bench/scale/threads.py", "--binary", ctx.gacompare, *thread_args,
                                           "--duration", "1"]))
@@ -97,5 +127,6 @@ def generate(ctx):
                                     "against the same pile awake",
                          "value": ", ".join(f"{b} {r:.1%}" for b, r in asleep[n].items()),
                          "anchor": "#what-sleeping-saves"})
-    return {"blocks": {"scale": scale, "scale_unsearched": unsearched, "reuse": reuse, "sleep": sleep,
+    return {"blocks": {"scale": scale, "scale_unsearched": unsearched, "scale_large": large, "reuse": reuse,
+                       "sleep": sleep,
                        "threads": threads}, "headline": headline}
