@@ -8,7 +8,7 @@ Bullet, each stage's share, and the exponent p of cost ~ N^p.
   bench/scale/scale.py --sizes 27,125 --repeat 3 --out reports/scale
   bench/scale/scale.py --time-of-impact none                                 # the same boxes with no impact search
   bench/scale/scale.py --sizes 125,1000,10000,100000 --time-of-impact none --threads 2 --every 0.5 \
-      --bullet-up-to 10000                                                   # to 100,000 bodies (half an hour)
+      --bullet-up-to 10000                                                   # to 100,000 bodies (twenty minutes)
 
 Every size runs as one `gacompare compare` of the three backends, which
 alternates their order in each repeat and quotes medians with min-max; the

@@ -35,8 +35,8 @@ def generate(ctx):
     with open(os.path.join(out_none, "scale.json")) as f:
         data_none = json.load(f)
     # To 100,000 bodies: without a search, on two threads, one repeat (about
-    # half an hour); Bullet, on one thread whatever --threads says, up to
-    # 10,000 only (at 100,000 it would take about an hour). Samples every
+    # twenty minutes); Bullet, on one thread whatever --threads says, up to
+    # 10,000 only (at 100,000 it would take over an hour). Samples every
     # 0.5 s: 100,000 bodies' samples every 0.05 s would take 6.6 GB.
     large_args = ["--sizes", "125,1000" if ctx.quick else "125,1000,10000,100000", "--repeat", "1",
                   "--time-of-impact", "none", "--threads", "2", "--every", "0.5", "--bullet-up-to", "10000"]
