@@ -4,7 +4,8 @@
 # from another compiler. The 1,000-body box of the scale series
 # (bench/scale/box_scene.py --bodies 1000 --seed 1, 0.3 s: some 2,500
 # responses and 2,200 time-of-impact searches; 300 bodies for 0.2 s under
-# GACOMPARE_QUICK_TESTS=1) and the bundled mixed pile
+# GACOMPARE_QUICK_TESTS=1), the same box without an impact search
+# (time_of_impact none: every deep response pushed out) and the bundled mixed pile
 # (cubes, spheres and a plate settling with friction, 1 s), each through
 # traditional, cga and pga; each run's state hash (core/run.hpp: every
 # sample's state, the solver's steps and every counter) printed by
@@ -22,7 +23,9 @@ trap 'rm -rf "$dir"' EXIT
 bodies=1000 duration=0.3
 if [ "${GACOMPARE_QUICK_TESTS:-0}" = 1 ]; then bodies=300 duration=0.2; fi
 python3 "$box_py" --bodies "$bodies" --seed 1 --duration "$duration" --every 0.1 >"$dir/box.json"
-scenes=("$dir/box.json" "$pile")
+python3 "$box_py" --bodies "$bodies" --seed 1 --duration "$duration" --every 0.1 --time-of-impact none \
+  >"$dir/box_unsearched.json"
+scenes=("$dir/box.json" "$dir/box_unsearched.json" "$pile")
 backends=traditional,cga,pga
 "$tool" "${scenes[@]}" --backends "$backends" --threads 1 >"$dir/one"
 "$tool" "${scenes[@]}" --backends "$backends" --threads 2 >"$dir/two"
