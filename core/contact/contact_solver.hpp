@@ -945,8 +945,8 @@ class ContactSolver {
 
     // The positional correction alone, for pairs a response left deeper than
     // the tolerance (core/collision/push_out_step.hpp): each such pair pushed
-    // to tol/4, every other pair of `hits` held from approaching. No impulse and no warm start: the velocities are the
-    // response's.
+    // to tol/4, every other pair of `hits` held from approaching. No impulse
+    // and no warm start: the velocities are the response's.
     void push_out(const Model& m, std::span<double> y, BodyIndices world, std::span<const PairHit> hits,
                   Profile& profile) const {
       ScopedStage timed(profile, Stage::response);

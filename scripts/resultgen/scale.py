@@ -11,42 +11,41 @@ import re
 from .common import strip_command_line
 
 
+def series(ctx, name, args):
+    """One run of bench/scale/scale.py with `args`: its table (command line
+    stripped) and its scale.json."""
+    out = ctx.scratch_dir(name)
+    ctx.run(["python3", "bench/scale/scale.py", "--binary", ctx.gacompare, *args, "--out", out],
+            quote=f"python3 bench/scale/scale.py --binary {ctx.gacompare} {' '.join(args)} --out DIR")
+    with open(os.path.join(out, "scale.md")) as f:
+        table = strip_command_line(f.read())
+    with open(os.path.join(out, "scale.json")) as f:
+        return table, json.load(f)
+
+
+def penetration(rows, backends):
+    """Each backend's deepest wall sample as a headline cell, FAILS marked."""
+    return [f"{b} {rows[b]['penetration']['value']} m" + ("" if rows[b]["penetration"]["pass"] else " (FAILS)")
+            for b in backends if "penetration" in rows.get(b, {})]
+
+
 def generate(ctx):
-    out = ctx.scratch_dir("scale")
     # Not --long: with every impact found within the tolerance, the 10,000-body
     # box's pile costs a quarter of an hour per simulated second per backend
     # (docs/results/scale.md says why), several hours for the three repeats.
     size = ["--sizes", "27,125,1000", "--repeat", "1" if ctx.quick else "3"]
-    ctx.run(["python3", "bench/scale/scale.py", "--binary", ctx.gacompare, *size, "--out", out],
-            quote=f"python3 bench/scale/scale.py --binary {ctx.gacompare} {' '.join(size)} --out DIR")
-    with open(os.path.join(out, "scale.md")) as f:
-        scale = strip_command_line(f.read())
-    with open(os.path.join(out, "scale.json")) as f:
-        data = json.load(f)
+    scale, data = series(ctx, "scale", size)
     # The same boxes with no impact search: what the tolerance costs, each
     # backend against Bullet in its own process (the two series are two runs).
-    out_none = ctx.scratch_dir("scale-none")
-    ctx.run(["python3", "bench/scale/scale.py", "--binary", ctx.gacompare, *size, "--time-of-impact", "none",
-             "--out", out_none],
-            quote=f"python3 bench/scale/scale.py --binary {ctx.gacompare} {' '.join(size)} --time-of-impact none "
-                  "--out DIR")
-    with open(os.path.join(out_none, "scale.md")) as f:
-        unsearched = strip_command_line(f.read())
-    with open(os.path.join(out_none, "scale.json")) as f:
-        data_none = json.load(f)
+    unsearched, data_none = series(ctx, "scale-none", [*size, "--time-of-impact", "none"])
     # To 100,000 bodies: without a search, on two threads, one repeat (about
     # twenty minutes); Bullet, on one thread whatever --threads says, up to
     # 10,000 only (at 100,000 it would take over an hour). Samples every
     # 0.5 s: 100,000 bodies' samples every 0.05 s would take 6.6 GB.
-    large_args = ["--sizes", "125,1000" if ctx.quick else "125,1000,10000,100000", "--repeat", "1",
-                  "--time-of-impact", "none", "--threads", "2", "--every", "0.5", "--bullet-up-to", "10000"]
-    out_large = ctx.scratch_dir("scale-large")
-    ctx.run(["python3", "bench/scale/scale.py", "--binary", ctx.gacompare, *large_args, "--out", out_large],
-            quote=f"python3 bench/scale/scale.py --binary {ctx.gacompare} {' '.join(large_args)} --out DIR")
-    with open(os.path.join(out_large, "scale.md")) as f:
-        large = strip_command_line(f.read())
-    with open(os.path.join(out_large, "scale.json")) as f:
-        data_large = json.load(f)
+    large, data_large = series(ctx, "scale-large",
+                               ["--sizes", "125,1000" if ctx.quick else "125,1000,10000,100000", "--repeat", "1",
+                                "--time-of-impact", "none", "--threads", "2", "--every", "0.5",
+                                "--bullet-up-to", "10000"])
     reuse_args = ["--sizes", "125,1000", "--repeat", "1" if ctx.quick else "3", "--duration", "0.2"]
     reuse = strip_command_line(ctx.run(["python3", "bench/scale/reuse.py", "--binary", ctx.gacompare, *reuse_args]))
     sleep_args = ["--sizes", "125,1000", "--repeat", "1" if ctx.quick else "3"]
@@ -59,8 +58,7 @@ def generate(ctx):
         headline.append({"finding": f"{int(largest):,} bodies in a box: run time per simulated second "
                                     "(each backend's own pile: the scene is chaotic)",
                          "value": ", ".join(cells), "anchor": "#bodies-in-a-box"})
-    deep = [f"{b} {r[b]['penetration']['value']} m" + ("" if r[b]["penetration"]["pass"] else " (FAILS)")
-            for b in ("traditional", "cga", "bullet") if "penetration" in r.get(b, {})]
+    deep = penetration(r, ("traditional", "cga", "bullet"))
     if deep:
         headline.append({"finding": f"{int(largest):,} bodies in a box: the deepest any body went into a wall "
                                     "(penetration tolerance 1e-4 m; the sanity rule allows ten)",
@@ -74,8 +72,7 @@ def generate(ctx):
                                     "impact searched to 1e-4 m, against time_of_impact none (each measured against "
                                     "Bullet in its own run)",
                          "value": "; ".join(cost), "anchor": "#without-a-search"})
-    deep_none = [f"{b} {rn[b]['penetration']['value']} m" + ("" if rn[b]["penetration"]["pass"] else " (FAILS)")
-                 for b in ("traditional", "cga") if "penetration" in rn.get(b, {})]
+    deep_none = penetration(rn, ("traditional", "cga"))
     if deep_none:
         headline.append({"finding": f"{int(largest):,} bodies in a box without a search: the deepest any body went "
                                     "into a wall at a sample (the rule allows ten tolerances and one step's travel)",
@@ -89,8 +86,7 @@ def generate(ctx):
     rl = data_large["results"][most]
     cells = [f"{b} {rl[b]['per_simulated_second']:.3g} s" + (" (failed)" if rl[b]["error"] else "")
              for b in ("traditional", "cga") if b in rl]
-    deep_large = [f"{b} {rl[b]['penetration']['value']} m" + ("" if rl[b]["penetration"]["pass"] else " (FAILS)")
-                  for b in ("traditional", "cga") if "penetration" in rl.get(b, {})]
+    deep_large = penetration(rl, ("traditional", "cga"))
     if cells:
         headline.append({"finding": f"{int(most):,} bodies in a box without a search, on two threads: run time per "
                                     "simulated second, and the deepest any body went into a wall at a sample",
