@@ -604,6 +604,7 @@ class ContactSolver {
         ++counters.direct_rounds;
         counters.direct_pivots += static_cast<std::uint64_t>(r.pivots);
         counters.direct_factorisations += static_cast<std::uint64_t>(r.factorisations);
+        counters.direct_updates += static_cast<std::uint64_t>(r.updates);
         counters.direct_proximal += static_cast<std::uint64_t>(r.proximal);
         if (!r.solved) ++counters.direct_unsolved, solved = false;
         if (rubs.empty()) break;

@@ -1,6 +1,7 @@
 #include "core/contact/lcp.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
@@ -17,46 +18,73 @@ namespace {
 
 enum class State : char { free, lower, upper, fixed };  // fixed: lo = hi
 
+// A_FF: A's rows and columns F (free[i] = i's position in F, or −1), column
+// by column straight from A's storage (no triplets to sort): A is
+// compressed with each column's rows in order, and `free` keeps their order,
+// so each column of A_FF comes out sorted.
+Eigen::SparseMatrix<double> free_block(const Eigen::SparseMatrix<double>& a, const std::vector<Eigen::Index>& rows,
+                                       const std::vector<Eigen::Index>& free) {
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  Eigen::Index nnz = 0;
+  for (const Eigen::Index c : rows) nnz += a.outerIndexPtr()[c + 1] - a.outerIndexPtr()[c];
+  Eigen::SparseMatrix<double> out(n, n);
+  out.resizeNonZeros(nnz);
+  Eigen::Index at = 0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    out.outerIndexPtr()[k] = static_cast<int>(at);
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a, rows[static_cast<std::size_t>(k)]); it; ++it)
+      if (const Eigen::Index j = free[static_cast<std::size_t>(it.row())]; j >= 0)
+        out.innerIndexPtr()[at] = static_cast<int>(j), out.valuePtr()[at] = it.value(), ++at;
+  }
+  out.outerIndexPtr()[n] = static_cast<int>(at);
+  out.resizeNonZeros(at);
+  return out;
+}
+
+// x refined towards A_FF x = r, `solve` the regularised (A_FF + δ)⁻¹ (δ taken
+// away again): converges on r's part in A_FF's range; stops when it no
+// longer gains (the rest lies in the null space and moves nothing).
+template <class Solve>
+Eigen::VectorXd refine_with(const Eigen::SparseMatrix<double>& a_ff, const Solve& solve, const Eigen::VectorXd& r,
+                            Eigen::VectorXd x, double tolerance) {
+  Eigen::VectorXd residual = r - a_ff * x;  // of x, kept for the next round
+  double last = residual.cwiseAbs().maxCoeff();
+  for (int k = 0; k < 4 && last > tolerance; ++k) {
+    const Eigen::VectorXd y = x + solve(residual);
+    Eigen::VectorXd next = r - a_ff * y;
+    const double now = next.cwiseAbs().maxCoeff();
+    if (!(now < 0.5 * last)) break;
+    x = y, last = now, residual.swap(next);
+  }
+  return x;
+}
+
 // x solving A_FF x = r for the free rows F (free[i] = position in F, or −1),
 // regularised by δ and refined with A_FF itself (see lcp.hpp).
 class FreeSystem {
  public:
   FreeSystem(const Eigen::SparseMatrix<double>& a, const std::vector<Eigen::Index>& rows,
              const std::vector<Eigen::Index>& free, const Eigen::VectorXd& delta, int dense_up_to)
-      : n_(static_cast<Eigen::Index>(rows.size())), dense_(n_ <= dense_up_to) {
-    // A_FF and A_FF + δ, column by column straight from A's storage (no
-    // triplets to sort): A is compressed with each column's rows in order,
-    // and `free` keeps their order, so each column of A_FF comes out sorted.
-    // The regularised copy holds every diagonal entry (0 + δ where A_FF has
-    // none, as coeffRef would insert).
-    Eigen::Index nnz = 0;
-    for (const Eigen::Index c : rows) nnz += a.outerIndexPtr()[c + 1] - a.outerIndexPtr()[c];
-    a_ff_.resize(n_, n_);
-    a_ff_.resizeNonZeros(nnz);
+      : n_(static_cast<Eigen::Index>(rows.size())), dense_(n_ <= dense_up_to), a_ff_(free_block(a, rows, free)) {
+    // A_FF + δ, with every diagonal entry (0 + δ where A_FF has none, as
+    // coeffRef would insert), built in vectors, then copied into w.reg:
+    // Eigen reads a SparseMatrix, and converting a Map to one on every
+    // factorisation went element by element.
     Workspace& w = workspace();
     w.outer.resize(static_cast<std::size_t>(n_) + 1), w.inner.clear(), w.values.clear();
-    w.inner.reserve(static_cast<std::size_t>(nnz + n_)), w.values.reserve(static_cast<std::size_t>(nnz + n_));
-    // (Built in vectors, then copied into w.reg: Eigen reads a SparseMatrix, and
-    // converting a Map to one on every factorisation went element by element.)
-    Eigen::Index at = 0;
+    w.inner.reserve(static_cast<std::size_t>(a_ff_.nonZeros() + n_)), w.values.reserve(static_cast<std::size_t>(a_ff_.nonZeros() + n_));
     for (Eigen::Index k = 0; k < n_; ++k) {
-      const Eigen::Index c = rows[static_cast<std::size_t>(k)];
-      const double dk = delta[c];
+      const double dk = delta[rows[static_cast<std::size_t>(k)]];
       bool diagonal = false;
-      a_ff_.outerIndexPtr()[k] = static_cast<int>(at);
       w.outer[static_cast<std::size_t>(k)] = static_cast<int>(w.inner.size());
-      for (Eigen::SparseMatrix<double>::InnerIterator it(a, c); it; ++it) {
-        const Eigen::Index j = free[static_cast<std::size_t>(it.row())];
-        if (j < 0) continue;
-        a_ff_.innerIndexPtr()[at] = static_cast<int>(j), a_ff_.valuePtr()[at] = it.value(), ++at;
+      for (Eigen::SparseMatrix<double>::InnerIterator it(a_ff_, k); it; ++it) {
+        const Eigen::Index j = it.row();
         if (j > k && !diagonal) w.inner.push_back(static_cast<int>(k)), w.values.push_back(0.0 + dk), diagonal = true;
         w.inner.push_back(static_cast<int>(j)), w.values.push_back(j == k ? it.value() + dk : it.value());
         diagonal |= j == k;
       }
       if (!diagonal) w.inner.push_back(static_cast<int>(k)), w.values.push_back(0.0 + dk);
     }
-    a_ff_.outerIndexPtr()[n_] = static_cast<int>(at);
-    a_ff_.resizeNonZeros(at);
     w.outer[static_cast<std::size_t>(n_)] = static_cast<int>(w.inner.size());
     if (dense_) {
       dense_ldlt_.compute(Eigen::MatrixXd(Eigen::Map<const Eigen::SparseMatrix<double>>(
@@ -66,23 +94,14 @@ class FreeSystem {
     }
   }
 
+  bool sparse() const { return !dense_; }
+
   // The regularised system's answer: (A_FF + δI) x = r.
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return once(r); }
 
-  // x refined towards A_FF x = r (δ taken away again): converges on r's part in
-  // A_FF's range; stops when it no longer gains (the rest lies in the null
-  // space and moves nothing).
+  // x refined towards A_FF x = r (refine_with).
   Eigen::VectorXd refine(const Eigen::VectorXd& r, Eigen::VectorXd x, double tolerance) const {
-    Eigen::VectorXd residual = r - a_ff_ * x;  // of x, kept for the next round
-    double last = residual.cwiseAbs().maxCoeff();
-    for (int k = 0; k < 4 && last > tolerance; ++k) {
-      const Eigen::VectorXd y = x + once(residual);
-      Eigen::VectorXd next = r - a_ff_ * y;
-      const double now = next.cwiseAbs().maxCoeff();
-      if (!(now < 0.5 * last)) break;
-      x = y, last = now, residual.swap(next);
-    }
-    return x;
+    return refine_with(a_ff_, [&](const Eigen::VectorXd& v) { return once(v); }, r, std::move(x), tolerance);
   }
 
  private:
@@ -162,6 +181,152 @@ class FreeSystem {
   Eigen::SparseMatrix<double> a_ff_;
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>* factor_ = nullptr;
+};
+
+// The free rows' system through one solve's active-set changes: factorised
+// once, then, while few rows have changed, solved through a Schur complement
+// instead of factorised again (the Schur-complement update of active-set
+// methods: Gill, Murray, Saunders & Wright, "Sparse matrix methods in
+// optimization", 1984; Bartlett & Biegler's QPSchur, 2006). With K0 = A + D
+// on the rows F0 of the last factorisation and the free rows F now differing
+// by the rows dropped (R = F0 \ F, now on a bound) and the rows added
+// (S = F \ F0),
+//
+//   [ K0       K_F0,S   E_R ] [x0]   [r0]
+//   [ K_S,F0   K_SS     0   ] [xS] = [rS]      (r0 zero on R)
+//   [ E_Rᵀ     0        0   ] [μ ]   [0 ]
+//
+// holds the dropped rows at zero (μ takes up their equations) and gives
+// x_F = (x0 off R, xS): K0's factor and the dense k × k complement
+// C = [K_SS 0; 0 0] − Bᵀ K0⁻¹ B, B = [K_F0,S  E_R], k = |R| + |S|. A change
+// costs one solve with K0's factor (a column of K0⁻¹ B, kept for the
+// solve's later changes), where a landing stack's factorisation cost tens of
+// milliseconds and its solves took up to 64 changes each. K0⁻¹ is applied to
+// right-hand sides K0 itself cannot meet (a dropped corner of a face leaves
+// its redundant set), so each answer is polished by one step of iterative
+// refinement against K_FF. Past most_updates changes, or at most
+// dense_up_to free rows (a dense factorisation that small costs about an
+// update), the free rows are factorised afresh, as they were at every change
+// before: there, and wherever a solve needs no change, the answers are those
+// of a fresh factorisation, bit for bit.
+class UpdatedSystem {
+ public:
+  UpdatedSystem(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& delta, const BlcpSettings& settings)
+      : a_(a), delta_(delta), settings_(settings), column_of_(static_cast<std::size_t>(a.rows()), -1) {}
+
+  enum class Change { factorised, updated, none };
+  // The free rows now (ascending; free[i] is row i's place among them or −1).
+  Change set(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& free) {
+    rows_ = rows, place_ = free;
+    changes_.clear();
+    if (base_ && base_->sparse() && static_cast<int>(rows.size()) > settings_.dense_up_to) {
+      for (const Eigen::Index i : base_rows_)
+        if (free[static_cast<std::size_t>(i)] < 0) changes_.push_back(i);
+      for (const Eigen::Index i : rows)
+        if (base_place_[static_cast<std::size_t>(i)] < 0) changes_.push_back(i);
+      if (static_cast<int>(changes_.size()) <= settings_.most_updates) {
+        if (changes_.empty()) return Change::none;
+        update();
+        return Change::updated;
+      }
+      changes_.clear();
+    }
+    for (const Eigen::Index i : cached_) column_of_[static_cast<std::size_t>(i)] = -1;
+    cached_.clear(), w_.clear();
+    base_.emplace(a_, rows, free, delta_, settings_.dense_up_to);
+    base_rows_ = rows, base_place_ = free;
+    return Change::factorised;
+  }
+
+  // (A_FF + D_F) x = r for the free rows F.
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) const {
+    if (changes_.empty()) return base_->solve(r);
+    Eigen::VectorXd x = through_complement(r);
+    return x + through_complement(r - a_ff_ * x - delta_(rows_).cwiseProduct(x));
+  }
+
+  // x refined towards A_FF x = r (FreeSystem::refine).
+  Eigen::VectorXd refine(const Eigen::VectorXd& r, Eigen::VectorXd x, double tolerance) const {
+    if (changes_.empty()) return base_->refine(r, std::move(x), tolerance);
+    return refine_with(a_ff_, [&](const Eigen::VectorXd& v) { return solve(v); }, r, std::move(x), tolerance);
+  }
+
+ private:
+  bool dropped(Eigen::Index i) const { return base_place_[static_cast<std::size_t>(i)] >= 0; }
+  // b_iᵀ v for change i's column of B, v over F0.
+  double column_dot(Eigen::Index i, const Eigen::VectorXd& v) const {
+    if (dropped(i)) return v[base_place_[static_cast<std::size_t>(i)]];
+    double sum = 0;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a_, i); it; ++it)
+      if (const Eigen::Index k = base_place_[static_cast<std::size_t>(it.row())]; k >= 0) sum += it.value() * v[k];
+    return sum;
+  }
+  const Eigen::VectorXd& column(Eigen::Index i) {
+    auto& at = column_of_[static_cast<std::size_t>(i)];
+    if (at < 0) {
+      Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(base_rows_.size()));
+      if (dropped(i)) b[base_place_[static_cast<std::size_t>(i)]] = 1;
+      else
+        for (Eigen::SparseMatrix<double>::InnerIterator it(a_, i); it; ++it)
+          if (const Eigen::Index k = base_place_[static_cast<std::size_t>(it.row())]; k >= 0) b[k] = it.value();
+      at = static_cast<Eigen::Index>(w_.size());
+      w_.push_back(base_->solve(b));
+      cached_.push_back(i);
+    }
+    return w_[static_cast<std::size_t>(at)];
+  }
+  void update() {
+    a_ff_ = free_block(a_, rows_, place_);
+    const auto k = static_cast<Eigen::Index>(changes_.size());
+    Eigen::MatrixXd c(k, k);
+    for (Eigen::Index v = 0; v < k; ++v) {
+      const Eigen::Index j = changes_[static_cast<std::size_t>(v)];
+      const Eigen::VectorXd& w = column(j);
+      for (Eigen::Index u = 0; u < k; ++u) {
+        const Eigen::Index i = changes_[static_cast<std::size_t>(u)];
+        const double c0 = dropped(i) || dropped(j) ? 0.0 : a_.coeff(i, j) + (i == j ? delta_[i] : 0.0);
+        c(u, v) = c0 - column_dot(i, w);
+      }
+    }
+    complement_.compute(c);
+  }
+  Eigen::VectorXd through_complement(const Eigen::VectorXd& r) const {
+    const auto m0 = static_cast<Eigen::Index>(base_rows_.size());
+    Eigen::VectorXd r0(m0);
+    for (Eigen::Index k = 0; k < m0; ++k) {
+      const Eigen::Index f = place_[static_cast<std::size_t>(base_rows_[static_cast<std::size_t>(k)])];
+      r0[k] = f >= 0 ? r[f] : 0.0;
+    }
+    const Eigen::VectorXd z = base_->solve(r0);
+    const auto k = static_cast<Eigen::Index>(changes_.size());
+    Eigen::VectorXd t(k);
+    for (Eigen::Index u = 0; u < k; ++u) {
+      const Eigen::Index i = changes_[static_cast<std::size_t>(u)];
+      t[u] = (dropped(i) ? 0.0 : r[place_[static_cast<std::size_t>(i)]]) - column_dot(i, z);
+    }
+    const Eigen::VectorXd y = complement_.solve(t);
+    Eigen::VectorXd x0 = z;
+    for (Eigen::Index u = 0; u < k; ++u)
+      x0 -= y[u] * w_[static_cast<std::size_t>(column_of_[static_cast<std::size_t>(changes_[static_cast<std::size_t>(u)])])];
+    Eigen::VectorXd x(static_cast<Eigen::Index>(rows_.size()));
+    for (Eigen::Index u = 0; u < k; ++u)
+      if (const Eigen::Index i = changes_[static_cast<std::size_t>(u)]; !dropped(i)) x[place_[static_cast<std::size_t>(i)]] = y[u];
+    for (Eigen::Index k0 = 0; k0 < m0; ++k0)
+      if (const Eigen::Index f = place_[static_cast<std::size_t>(base_rows_[static_cast<std::size_t>(k0)])]; f >= 0) x[f] = x0[k0];
+    return x;
+  }
+
+  const Eigen::SparseMatrix<double>& a_;
+  const Eigen::VectorXd& delta_;
+  const BlcpSettings& settings_;
+  std::optional<FreeSystem> base_;                       // K0's factor
+  std::vector<Eigen::Index> base_rows_, base_place_;     // F0, and each row's place in it
+  std::vector<Eigen::Index> rows_, place_;               // F, and each row's place in it
+  std::vector<Eigen::Index> changes_;                    // R (in F0's order), then S (ascending)
+  Eigen::SparseMatrix<double> a_ff_;                     // A_FF, while changes_ is not empty
+  Eigen::PartialPivLU<Eigen::MatrixXd> complement_;      // C's factors
+  std::vector<Eigen::Index> column_of_, cached_;         // a row's column of K0⁻¹ B in w_ (−1: none yet)
+  std::vector<Eigen::VectorXd> w_;
 };
 
 double tolerance_of(const Blcp& p, const BlcpSettings& s) {
@@ -245,7 +410,7 @@ bool projected_step(const Blcp& p, const Eigen::VectorXd& c, const Eigen::Vector
 // right-hand side it solved.
 bool active_set(const Blcp& p, const Eigen::VectorXd& c, const Eigen::VectorXd& delta, double tol,
                 const BlcpSettings& settings, Eigen::VectorXd& lambda, std::vector<State>& state,
-                std::vector<Eigen::Index>& rows, std::optional<FreeSystem>& system, Eigen::VectorXd& rhs,
+                std::vector<Eigen::Index>& rows, UpdatedSystem& system, Eigen::VectorXd& rhs,
                 BlcpResult& result) {
   const Eigen::Index n = c.size();
   std::vector<Eigen::Index> free(static_cast<std::size_t>(n));
@@ -266,9 +431,12 @@ bool active_set(const Blcp& p, const Eigen::VectorXd& c, const Eigen::VectorXd& 
       const Eigen::VectorXd known = p.A * on_bounds + c;
       rhs.resize(static_cast<Eigen::Index>(rows.size()));
       for (std::size_t k = 0; k < rows.size(); ++k) rhs[static_cast<Eigen::Index>(k)] = -known[rows[k]];
-      system.emplace(p.A, rows, free, delta, settings.dense_up_to);
-      ++result.factorisations;
-      x = system->solve(rhs);
+      switch (system.set(rows, free)) {
+        case UpdatedSystem::Change::factorised: ++result.factorisations; break;
+        case UpdatedSystem::Change::updated: ++result.updates; break;
+        case UpdatedSystem::Change::none: break;
+      }
+      x = system.solve(rhs);
       // The longest step towards it that keeps every free row within its bounds.
       for (std::size_t k = 0; k < rows.size(); ++k) {
         const Eigen::Index i = rows[k];
@@ -351,7 +519,7 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
                                  : State::free;
   }
   std::vector<Eigen::Index> rows;
-  std::optional<FreeSystem> system;  // the last factorisation
+  UpdatedSystem system(p.A, delta, settings);  // the free rows' last system
   Eigen::VectorXd rhs;               // and the right-hand side it solved
   Eigen::VectorXd c = p.b;           // the regularised problem's linear term
   Eigen::VectorXd best;              // the best answer so far, once a proximal step is taken
@@ -372,7 +540,7 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
         const Eigen::VectorXd known = p.A * on_bounds + p.b;
         for (std::size_t k = 0; k < rows.size(); ++k) rhs[static_cast<Eigen::Index>(k)] = -known[rows[k]];
       }
-      const Eigen::VectorXd y = system->refine(rhs, lambda(rows), 1e-3 * tol);
+      const Eigen::VectorXd y = system.refine(rhs, lambda(rows), 1e-3 * tol);
       bool inside = true;
       for (std::size_t k = 0; k < rows.size(); ++k) {
         const double v = y[static_cast<Eigen::Index>(k)];

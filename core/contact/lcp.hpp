@@ -25,6 +25,8 @@
 // their bounds at once (a stack landing), the free minimiser projected onto
 // the bounds is taken instead of the step to the first bound when it lowers
 // the objective more, so they join their bounds in one iteration (lcp.cpp).
+// The changes after a factorisation are solved through a Schur complement
+// bordering it while they are few, not by factorising again (lcp.cpp).
 // (Block principal pivoting, tried first, cycled on the degenerate sets of a
 // face's corners.)
 //
@@ -60,12 +62,14 @@ struct BlcpSettings {
   double velocity_tolerance = 0;  // w's sign conditions hold to this (m/s or m)
   int dense_up_to = 48;         // rows at most for a dense factorisation
   int max_proximal = 64;        // proximal steps at most, once the active set is found (lcp.cpp)
+  int most_updates = 64;        // active-set changes solved through a Schur complement before factorising again (lcp.cpp; 0: none)
 };
 
 struct BlcpResult {
   bool solved = false;
   int pivots = 0;          // active-set changes made
   int factorisations = 0;
+  int updates = 0;         // active-set changes solved through the Schur complement instead (lcp.cpp)
   int proximal = 0;        // proximal steps taken to remove the regularisation's bias
   double residual = 0;     // the worst violation of the conditions above (w's units)
 };
