@@ -52,13 +52,14 @@ struct CollisionCounters {
   // friction ended on the cone (sliding) and the friction rows warm started.
   std::uint64_t friction_contacts = 0, sliding_contacts = 0, friction_warm_started = 0;
   // The contact solver's work: solves (velocity and correction), the direct
-  // solver's active-set changes, factorisations, changes solved through a
-  // Schur complement instead, proximal steps (lcp.cpp),
+  // solver's active-set changes, factorisations (and how many of them were
+  // of the augmented system), changes solved through a Schur complement
+  // instead, proximal steps (lcp.cpp),
   // friction-bound rounds and solves it left unsolved (the sweeps then
   // finish them), and how many
   // sweeps each solve took: sweep_histogram[k] counts solves of 2^k to
   // 2^(k+1) − 1 sweeps (the last bucket: the cap).
-  std::uint64_t solves = 0, direct_pivots = 0, direct_factorisations = 0, direct_updates = 0, direct_proximal = 0, direct_rounds = 0, direct_unsolved = 0;
+  std::uint64_t solves = 0, direct_pivots = 0, direct_factorisations = 0, direct_updates = 0, direct_augmented = 0, direct_proximal = 0, direct_rounds = 0, direct_unsolved = 0;
   // At rest (contact_solver.hpp): position projections skipped as idle, and
   // frictionless warm starts kept without a solve.
   std::uint64_t projections_skipped = 0, exact_starts = 0;

@@ -339,6 +339,19 @@ class ContactSolver {
         for (int d = 0; d < 2; ++d) lines.push_back({rows[f.row].sa, rows[f.row].sb, &f.arm_a[d], &f.arm_b[d], f.t[d]});
       return lines;
     }
+    // Each moving slot's lines, in line order, with the sign of their impulse
+    // on it (−1 on a line's first body, +1 on its second).
+    static std::vector<std::vector<std::pair<std::size_t, double>>> lines_at(const std::vector<Line>& lines, std::size_t slots,
+                                                                              const std::vector<char>& moving) {
+      std::vector<std::vector<std::pair<std::size_t, double>>> at(slots);
+      for (std::size_t k = 0; k < lines.size(); ++k) {
+        if (moving[lines[k].sa]) at[lines[k].sa].emplace_back(k, -1.0);
+        if (moving[lines[k].sb]) at[lines[k].sb].emplace_back(k, 1.0);
+      }
+      return at;
+    }
+    // A line's arm on the body its impulse has `sign` on.
+    static const typename Bodies::Arm& arm(const Line& l, double sign) { return sign > 0 ? *l.arm_b : *l.arm_a; }
     // The Delassus matrix A = J M⁻¹ Jᵀ of the lines, from the backend's own
     // algebra: column j is what a unit impulse along line j (pushed into a
     // body at rest, as the sweeps push) does to every line's velocity
@@ -351,12 +364,7 @@ class ContactSolver {
     // is the same whatever the values.
     Eigen::SparseMatrix<double> delassus(const std::vector<Line>& lines, const Motions& motion,
                                          const std::vector<char>& moving) const {
-      std::vector<std::vector<std::pair<std::size_t, double>>> at(motion.size());  // slot → (line, sign)
-      for (std::size_t k = 0; k < lines.size(); ++k) {
-        if (moving[lines[k].sa]) at[lines[k].sa].emplace_back(k, -1.0);
-        if (moving[lines[k].sb]) at[lines[k].sb].emplace_back(k, 1.0);
-      }
-      const auto arm = [&](const Line& l, double sign) -> const typename Bodies::Arm& { return sign > 0 ? *l.arm_b : *l.arm_a; };
+      const auto at = lines_at(lines, motion.size(), moving);
       // Line j's column part through slot s (where j has sign sj): (line, value), in line order.
       using Part = std::vector<std::pair<Eigen::Index, double>>;
       const auto part = [&](std::size_t s, std::size_t j, double sj, Part& out) {
@@ -396,6 +404,39 @@ class ContactSolver {
       a.outerIndexPtr()[n] = static_cast<int>(nz);
       a.resizeNonZeros(nz);
       return a;
+    }
+    // A's factor by body, A = G Gᵀ (contact::Blcp::G): slot s's part of A,
+    // the velocities of its lines from unit impulses through s alone (the
+    // parts delassus sums), is positive semi-definite of rank at most six (a
+    // rigid body's freedoms), factorised as G_s G_sᵀ by pivoted Cholesky
+    // (contact::psd_factor). In the backend's own algebra, as A is: no basis
+    // of the bodies' motions is needed.
+    Eigen::SparseMatrix<double, Eigen::RowMajor> body_factor(const std::vector<Line>& lines, const Motions& motion,
+                                                           const std::vector<char>& moving) const {
+      const auto at = lines_at(lines, motion.size(), moving);
+      std::vector<Eigen::Triplet<double, Eigen::Index>> t;
+      Eigen::Index columns = 0;
+      for (std::size_t s = 0; s < motion.size(); ++s) {
+        const auto k = static_cast<Eigen::Index>(at[s].size());
+        if (k == 0) continue;
+        Eigen::MatrixXd part(k, k);
+        for (Eigen::Index v = 0; v < k; ++v) {
+          const auto& [j, sj] = at[s][static_cast<std::size_t>(v)];
+          Motion unit = Bodies::at_rest(motion[s]);
+          Bodies::push(unit, arm(lines[j], sj), lines[j].dir, sj);
+          for (Eigen::Index u = 0; u < k; ++u) {
+            const auto& [i, si] = at[s][static_cast<std::size_t>(u)];
+            part(u, v) = si * Bodies::normal_velocity(unit, arm(lines[i], si), lines[i].dir);
+          }
+        }
+        const Eigen::MatrixXd gs = contact::psd_factor(part, 6);
+        for (Eigen::Index c = 0; c < gs.cols(); ++c, ++columns)
+          for (Eigen::Index u = 0; u < k; ++u)
+            if (gs(u, c) != 0) t.emplace_back(static_cast<Eigen::Index>(at[s][static_cast<std::size_t>(u)].first), columns, gs(u, c));
+      }
+      Eigen::SparseMatrix<double, Eigen::RowMajor> g(static_cast<Eigen::Index>(lines.size()), columns);
+      g.setFromTriplets(t.begin(), t.end());
+      return g;
     }
     // Every line's velocity less its target (lines: normal rows' targets; friction: 0).
     Eigen::VectorXd line_velocities(const std::vector<Row>& rows, const std::vector<Friction>& frictions,
@@ -458,6 +499,7 @@ class ContactSolver {
       if (known && known->rows() == n) p.A = *known;
       else if (known && known->rows() > n && frictions.empty()) p.A = known->topLeftCorner(n, n);
       else p.A = delassus(lines, motion, moving);
+      if (n >= contact::BlcpSettings{}.augmented_from) p.G = body_factor(lines, motion, moving);
       if (known && known->rows() == 0) *known = p.A;
       Eigen::VectorXd held(n);
       for (Eigen::Index k = 0; k < nr; ++k) held[k] = rows[static_cast<std::size_t>(k)].lambda;
@@ -503,6 +545,14 @@ class ContactSolver {
         g.A.resize(m, m);
         g.A.setFromTriplets(t.begin(), t.end());
         g.b = p.b(group), g.lo = p.lo(group), g.hi = p.hi(group), g.weight = p.weight(group);
+        if (p.G.rows() > 0 && m >= how.augmented_from) {  // the group's rows of G (its bodies' columns)
+          std::vector<Eigen::Triplet<double>> gt;
+          for (Eigen::Index u = 0; u < m; ++u)
+            for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(p.G, group[static_cast<std::size_t>(u)]); it; ++it)
+              gt.emplace_back(u, it.col(), it.value());
+          g.G.resize(m, p.G.cols());
+          g.G.setFromTriplets(gt.begin(), gt.end());
+        }
         Eigen::VectorXd x = lambda(group);
         solve_group(g, x, group, local, nr, frictions, how, solved);
         lambda(group) = x;
@@ -605,6 +655,7 @@ class ContactSolver {
         counters.direct_pivots += static_cast<std::uint64_t>(r.pivots);
         counters.direct_factorisations += static_cast<std::uint64_t>(r.factorisations);
         counters.direct_updates += static_cast<std::uint64_t>(r.updates);
+        counters.direct_augmented += static_cast<std::uint64_t>(r.augmented);
         counters.direct_proximal += static_cast<std::uint64_t>(r.proximal);
         if (!r.solved) ++counters.direct_unsolved, solved = false;
         if (rubs.empty()) break;

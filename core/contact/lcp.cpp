@@ -46,10 +46,10 @@ Eigen::SparseMatrix<double> free_block(const Eigen::SparseMatrix<double>& a, con
 // longer gains (the rest lies in the null space and moves nothing).
 template <class Solve>
 Eigen::VectorXd refine_with(const Eigen::SparseMatrix<double>& a_ff, const Solve& solve, const Eigen::VectorXd& r,
-                            Eigen::VectorXd x, double tolerance) {
+                            Eigen::VectorXd x, double tolerance, int most_steps = 4) {
   Eigen::VectorXd residual = r - a_ff * x;  // of x, kept for the next round
   double last = residual.cwiseAbs().maxCoeff();
-  for (int k = 0; k < 4 && last > tolerance; ++k) {
+  for (int k = 0; k < most_steps && last > tolerance; ++k) {
     const Eigen::VectorXd y = x + solve(residual);
     Eigen::VectorXd next = r - a_ff * y;
     const double now = next.cwiseAbs().maxCoeff();
@@ -61,11 +61,34 @@ Eigen::VectorXd refine_with(const Eigen::SparseMatrix<double>& a_ff, const Solve
 
 // x solving A_FF x = r for the free rows F (free[i] = position in F, or −1),
 // regularised by δ and refined with A_FF itself (see lcp.hpp).
+//
+// Given A's factor by body G (A = G Gᵀ, Blcp::G), the sparse path factorises
+// the augmented system instead,
+//
+//   [ I     G_Fᵀ ] [u]   [ 0 ]
+//   [ G_F   −D_F ] [x] = [ −r ]     (u = −G_Fᵀ x, so (A_FF + D_F) x = r),
+//
+// quasi-definite, so an LDLᵀ factorisation exists in any symmetric order
+// (Vanderbei, "Symmetric quasi-definite matrices", 1995), as interior-point
+// and OSQP-type solvers factorise their regularised KKT systems. Where rows
+// share bodies many at a time, A_FF's factor fills in by the rows at each
+// body squared, the augmented one by the bodies' six freedoms: on a square
+// pyramid of 10 layers (4,960 rows) its factor has 254,289 entries against
+// 860,992, on 15 layers 1.3 against 6.0 million. D's entries are 1e-10 of
+// A's largest diagonal, so the augmented factorisation loses digits along
+// the redundant rows' directions (a 1e-3 residual on the pyramid); iterative
+// refinement against A_FF + D_F takes it to the direct factorisation's
+// residual in three steps (measured: 1e-3, 7e-8, 6e-12, 2e-14).
 class FreeSystem {
  public:
   FreeSystem(const Eigen::SparseMatrix<double>& a, const std::vector<Eigen::Index>& rows,
-             const std::vector<Eigen::Index>& free, const Eigen::VectorXd& delta, int dense_up_to)
+             const std::vector<Eigen::Index>& free, const Eigen::VectorXd& delta, int dense_up_to,
+             const Eigen::SparseMatrix<double, Eigen::RowMajor>* g = nullptr)
       : n_(static_cast<Eigen::Index>(rows.size())), dense_(n_ <= dense_up_to), a_ff_(free_block(a, rows, free)) {
+    if (g && !dense_) {
+      augment(*g, rows, delta);
+      return;
+    }
     // A_FF + δ, with every diagonal entry (0 + δ where A_FF has none, as
     // coeffRef would insert), built in vectors, then copied into w.reg:
     // Eigen reads a SparseMatrix, and converting a Map to one on every
@@ -95,6 +118,7 @@ class FreeSystem {
   }
 
   bool sparse() const { return !dense_; }
+  bool augmented() const { return augmented_; }
 
   // The regularised system's answer: (A_FF + δI) x = r.
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return once(r); }
@@ -173,11 +197,58 @@ class FreeSystem {
     return hit->ldlt;
   }
 
+  // The augmented system [I G_Fᵀ; G_F −D_F] in the workspace (the columns
+  // of G that F's rows touch, in G's order), factorised.
+  void augment(const Eigen::SparseMatrix<double, Eigen::RowMajor>& g, const std::vector<Eigen::Index>& rows,
+               const Eigen::VectorXd& delta) {
+    augmented_ = true;
+    std::vector<int> column(static_cast<std::size_t>(g.cols()), -1);
+    for (const Eigen::Index i : rows)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(g, i); it; ++it) column[static_cast<std::size_t>(it.col())] = 0;
+    int c = 0;
+    for (int& k : column)
+      if (k == 0) k = c++;
+    columns_ = c;
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(static_cast<std::size_t>(c + n_ + 2 * 12 * n_));
+    for (int k = 0; k < c; ++k) t.emplace_back(k, k, 1.0);
+    for (Eigen::Index f = 0; f < n_; ++f) {
+      const Eigen::Index i = rows[static_cast<std::size_t>(f)];
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(g, i); it; ++it) {
+        const int k = column[static_cast<std::size_t>(it.col())];
+        t.emplace_back(c + f, k, it.value()), t.emplace_back(k, c + f, it.value());
+      }
+      t.emplace_back(c + f, c + f, -delta[i]);
+    }
+    Eigen::SparseMatrix<double> k(c + n_, c + n_);
+    k.setFromTriplets(t.begin(), t.end());
+    Workspace& w = workspace();
+    w.outer.assign(k.outerIndexPtr(), k.outerIndexPtr() + k.cols() + 1);
+    w.inner.assign(k.innerIndexPtr(), k.innerIndexPtr() + k.nonZeros());
+    w.values.assign(k.valuePtr(), k.valuePtr() + k.nonZeros());
+    factor_ = &factor_of(w);
+    regularised_ = a_ff_;
+    for (Eigen::Index f = 0; f < n_; ++f) regularised_.coeffRef(f, f) += delta[rows[static_cast<std::size_t>(f)]];
+  }
+  // (A_FF + D_F)⁻¹ r through the augmented factor, refined against A_FF + D_F
+  // until a step no longer halves the residual (at most eight steps).
+  Eigen::VectorXd through_augmented(const Eigen::VectorXd& r) const {
+    const auto once_augmented = [&](const Eigen::VectorXd& v) {
+      Eigen::VectorXd big = Eigen::VectorXd::Zero(columns_ + n_);
+      big.tail(n_) = -v;
+      return Eigen::VectorXd(factor_->solve(big).tail(n_));
+    };
+    return refine_with(regularised_, once_augmented, r, once_augmented(r), 0.0, 8);
+  }
   Eigen::VectorXd once(const Eigen::VectorXd& r) const {
+    if (augmented_) return through_augmented(r);
     return dense_ ? Eigen::VectorXd(dense_ldlt_.solve(r)) : Eigen::VectorXd(factor_->solve(r));
   }
   Eigen::Index n_;
   bool dense_;
+  bool augmented_ = false;
+  Eigen::Index columns_ = 0;             // G_F's columns (augmented)
+  Eigen::SparseMatrix<double> regularised_;  // A_FF + D_F (augmented)
   Eigen::SparseMatrix<double> a_ff_;
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>* factor_ = nullptr;
@@ -211,8 +282,9 @@ class FreeSystem {
 // of a fresh factorisation, bit for bit.
 class UpdatedSystem {
  public:
-  UpdatedSystem(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& delta, const BlcpSettings& settings)
-      : a_(a), delta_(delta), settings_(settings), column_of_(static_cast<std::size_t>(a.rows()), -1) {}
+  UpdatedSystem(const Blcp& p, const Eigen::VectorXd& delta, const BlcpSettings& settings)
+      : a_(p.A), g_(p.G.rows() == p.A.rows() ? &p.G : nullptr), delta_(delta), settings_(settings),
+        column_of_(static_cast<std::size_t>(p.A.rows()), -1) {}
 
   enum class Change { factorised, updated, none };
   // The free rows now (ascending; free[i] is row i's place among them or −1).
@@ -233,10 +305,13 @@ class UpdatedSystem {
     }
     for (const Eigen::Index i : cached_) column_of_[static_cast<std::size_t>(i)] = -1;
     cached_.clear(), w_.clear();
-    base_.emplace(a_, rows, free, delta_, settings_.dense_up_to);
+    const bool augment = g_ && static_cast<int>(rows.size()) >= settings_.augmented_from;
+    base_.emplace(a_, rows, free, delta_, settings_.dense_up_to, augment ? g_ : nullptr);
     base_rows_ = rows, base_place_ = free;
     return Change::factorised;
   }
+
+  bool augmented() const { return base_ && base_->augmented(); }
 
   // (A_FF + D_F) x = r for the free rows F.
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const {
@@ -317,6 +392,7 @@ class UpdatedSystem {
   }
 
   const Eigen::SparseMatrix<double>& a_;
+  const Eigen::SparseMatrix<double, Eigen::RowMajor>* g_;  // A's factor by body, or none
   const Eigen::VectorXd& delta_;
   const BlcpSettings& settings_;
   std::optional<FreeSystem> base_;                       // K0's factor
@@ -353,6 +429,25 @@ double residual_of(const Blcp& p, const Eigen::VectorXd& lambda, const Eigen::Ve
 }
 
 }  // namespace
+
+Eigen::MatrixXd psd_factor(const Eigen::MatrixXd& a, int most_columns) {
+  const Eigen::Index k = a.rows();
+  Eigen::MatrixXd g(k, std::min<Eigen::Index>(k, most_columns));
+  Eigen::VectorXd left = a.diagonal();  // the diagonal of a − G Gᵀ so far
+  const double floor = 1e-14 * (k > 0 ? left.maxCoeff() : 0.0);
+  Eigen::Index r = 0;
+  for (; r < g.cols(); ++r) {
+    Eigen::Index p = 0;
+    const double top = left.maxCoeff(&p);
+    if (!(top > floor)) break;
+    Eigen::VectorXd c = a.col(p) - g.leftCols(r) * g.row(p).head(r).transpose();
+    c /= std::sqrt(top);
+    left -= c.cwiseAbs2();
+    left[p] = 0;
+    g.col(r) = c;
+  }
+  return g.leftCols(r);
+}
 
 double blcp_residual(const Blcp& p, const Eigen::VectorXd& lambda) {
   Eigen::VectorXd diagonal(p.b.size());
@@ -432,7 +527,10 @@ bool active_set(const Blcp& p, const Eigen::VectorXd& c, const Eigen::VectorXd& 
       rhs.resize(static_cast<Eigen::Index>(rows.size()));
       for (std::size_t k = 0; k < rows.size(); ++k) rhs[static_cast<Eigen::Index>(k)] = -known[rows[k]];
       switch (system.set(rows, free)) {
-        case UpdatedSystem::Change::factorised: ++result.factorisations; break;
+        case UpdatedSystem::Change::factorised:
+          ++result.factorisations;
+          result.augmented += system.augmented();
+          break;
         case UpdatedSystem::Change::updated: ++result.updates; break;
         case UpdatedSystem::Change::none: break;
       }
@@ -519,7 +617,7 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
                                  : State::free;
   }
   std::vector<Eigen::Index> rows;
-  UpdatedSystem system(p.A, delta, settings);  // the free rows' last system
+  UpdatedSystem system(p, delta, settings);  // the free rows' last system
   Eigen::VectorXd rhs;               // and the right-hand side it solved
   Eigen::VectorXd c = p.b;           // the regularised problem's linear term
   Eigen::VectorXd best;              // the best answer so far, once a proximal step is taken

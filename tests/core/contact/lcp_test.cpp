@@ -365,5 +365,125 @@ TEST(Blcp, UpdatesAgreeWithFreshFactorisations) {
   EXPECT_LT(updated_factorisations, fresh_factorisations / 4);
 }
 
+// psd_factor against the matrices it factorises: seeded random G0 G0ᵀ of
+// rank 1 to 6 on up to 30 rows (the rows at one body), and a face's four
+// coplanar corners on one cube (rank 3: lift and two tilts). It finds the
+// rank and G Gᵀ matches to 1e-13 of the largest entry (pivoted Cholesky's
+// rounding on a semi-definite matrix, Higham 1990: a few ulps times the
+// rows).
+TEST(PsdFactor, RecoversLowRankMatrices) {
+  std::mt19937_64 rng(6);
+  std::normal_distribution<double> g;
+  for (int trial = 0; trial < 60; ++trial) {
+    const int k = 1 + trial % 30, rank = std::min(k, 1 + trial % 6);
+    Eigen::MatrixXd g0(k, rank);
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < rank; ++j) g0(i, j) = g(rng);
+    const Eigen::MatrixXd a = g0 * g0.transpose();
+    const Eigen::MatrixXd f = psd_factor(a, 6);
+    EXPECT_EQ(f.cols(), rank) << "trial " << trial;
+    EXPECT_LE((f * f.transpose() - a).cwiseAbs().maxCoeff(), 1e-13 * a.cwiseAbs().maxCoeff()) << "trial " << trial;
+  }
+  const double half = 0.1, inv_i = 1 / (2 * half * half / 3);
+  Eigen::MatrixXd j(4, 3);
+  int k = 0;
+  for (const double sx : {-1.0, 1.0})
+    for (const double sy : {-1.0, 1.0}) j.row(k++) << 1, sy * half, -sx * half;
+  const Eigen::MatrixXd face = j * Eigen::Vector3d(1, inv_i, inv_i).asDiagonal() * j.transpose();
+  const Eigen::MatrixXd f = psd_factor(face, 6);
+  EXPECT_EQ(f.cols(), 3);
+  EXPECT_LE((f * f.transpose() - face).cwiseAbs().maxCoeff(), 1e-13 * face.cwiseAbs().maxCoeff());
+}
+
+// A square pyramid of L layers of unit cubes of side 0.2 (each on four
+// below, four coplanar corner rows per face contact: redundant rows), as G =
+// J M^-½ with A = G Gᵀ: the contact solver's factor by body.
+Eigen::SparseMatrix<double, Eigen::RowMajor> pyramid_factor(int layers) {
+  const double side = 0.2, pitch = 0.22, inv_i = 1 / (side * side / 6);
+  std::vector<Eigen::Vector3d> centre;
+  std::vector<std::vector<int>> at(static_cast<std::size_t>(layers));
+  for (int l = 0; l < layers; ++l) {
+    const int r = layers - l;
+    for (int i = 0; i < r; ++i)
+      for (int j = 0; j < r; ++j) {
+        at[static_cast<std::size_t>(l)].push_back(static_cast<int>(centre.size()));
+        centre.emplace_back((i - (r - 1) / 2.0) * pitch, (j - (r - 1) / 2.0) * pitch, side / 2 + l * side);
+      }
+  }
+  std::vector<Eigen::Triplet<double>> t;
+  int row = 0;
+  const auto add_row = [&](int below, int above, const Eigen::Vector3d& p) {
+    const Eigen::Vector3d n(0, 0, 1);
+    for (const int b : {below, above}) {
+      if (b < 0) continue;
+      const double sign = b == above ? 1 : -1;
+      const Eigen::Vector3d turn = (p - centre[static_cast<std::size_t>(b)]).cross(n) * std::sqrt(inv_i);
+      for (int c = 0; c < 3; ++c) t.emplace_back(row, 6 * b + c, sign * n[c]), t.emplace_back(row, 6 * b + 3 + c, sign * turn[c]);
+    }
+    ++row;
+  };
+  for (int l = 0; l < layers; ++l) {
+    const int r = layers - l;
+    for (int i = 0; i < r; ++i)
+      for (int j = 0; j < r; ++j) {
+        const int a = at[static_cast<std::size_t>(l)][static_cast<std::size_t>(i * r + j)];
+        const Eigen::Vector3d& c = centre[static_cast<std::size_t>(a)];
+        const double z = c.z() - side / 2;
+        std::vector<int> below{-1};
+        if (l > 0) below = {};
+        for (int di = 0; l > 0 && di < 2; ++di)
+          for (int dj = 0; dj < 2; ++dj) below.push_back(at[static_cast<std::size_t>(l - 1)][static_cast<std::size_t>((i + di) * (r + 1) + j + dj)]);
+        for (const int b : below) {
+          const Eigen::Vector3d cb = b < 0 ? c : centre[static_cast<std::size_t>(b)];
+          const double x0 = std::max(c.x(), cb.x()) - side / 2, x1 = std::min(c.x(), cb.x()) + side / 2;
+          const double y0 = std::max(c.y(), cb.y()) - side / 2, y1 = std::min(c.y(), cb.y()) + side / 2;
+          for (const double x : {x0, x1})
+            for (const double y : {y0, y1}) add_row(b, a, Eigen::Vector3d(x, y, z));
+        }
+      }
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> g(row, 6 * static_cast<int>(centre.size()));
+  g.setFromTriplets(t.begin(), t.end());
+  return g;
+}
+
+// The augmented factorisation [I Gᵀ; G −δ] (lcp.cpp's FreeSystem, given G)
+// against A's own, on a 6-layer square pyramid (91 cubes, 1,024 rows, a
+// quarter of each face's corners redundant) with seeded random velocities:
+// every cube pressed down or lifted, so rows part and close and the active
+// set changes. Both answers meet the conditions to 1e-9 of the problem's
+// scale and give every row the same velocity to 1e-8 of it (the tolerances
+// of MatchesBruteForceOnRandomContactProblems), and the augmented
+// factorisations are the ones taken.
+TEST(Blcp, AugmentedAndRowSpaceFactorisationsAgree) {
+  std::mt19937_64 rng(20261205);
+  std::normal_distribution<double> g;
+  Blcp p;
+  p.G = pyramid_factor(6);
+  p.A = Eigen::SparseMatrix<double>(p.G) * Eigen::SparseMatrix<double>(p.G).transpose();
+  const auto n = p.A.rows();
+  ASSERT_EQ(n, 1024);
+  for (int trial = 0; trial < 4; ++trial) {
+    Eigen::VectorXd v(p.G.cols());  // each body's velocity (scaled by M^½), mostly down
+    for (Eigen::Index c = 0; c < v.size(); ++c) v[c] = g(rng) * (c % 6 == 2 ? 1.0 : 0.1) - (c % 6 == 2 ? 0.5 : 0.0);
+    p.b = Eigen::SparseMatrix<double>(p.G) * v;
+    p.lo = Eigen::VectorXd::Zero(n);
+    p.hi = Eigen::VectorXd::Constant(n, kInf);
+    const double scale = 1 + p.A.coeffs().cwiseAbs().maxCoeff();
+    BlcpSettings augmented, row_space;
+    augmented.augmented_from = 0;
+    row_space.augmented_from = static_cast<int>(n) + 1;
+    Eigen::VectorXd x_aug = Eigen::VectorXd::Zero(n), x_row = x_aug;
+    const BlcpResult ra = solve_blcp(p, x_aug, augmented), rr = solve_blcp(p, x_row, row_space);
+    ASSERT_TRUE(ra.solved) << "trial " << trial;
+    ASSERT_TRUE(rr.solved) << "trial " << trial;
+    EXPECT_EQ(ra.augmented, ra.factorisations) << "trial " << trial;
+    EXPECT_EQ(rr.augmented, 0) << "trial " << trial;
+    EXPECT_GT(ra.pivots, 0) << "trial " << trial;
+    EXPECT_LE(blcp_residual(p, x_aug), 1e-9 * scale) << "trial " << trial;
+    EXPECT_LE((p.A * x_aug - p.A * x_row).cwiseAbs().maxCoeff(), 1e-8 * scale) << "trial " << trial;
+  }
+}
+
 }  // namespace
 }  // namespace gacompare::core::contact
