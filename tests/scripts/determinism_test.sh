@@ -6,8 +6,11 @@
 # responses and 2,200 time-of-impact searches; 300 bodies for 0.2 s under
 # GACOMPARE_QUICK_TESTS=1), the same box without an impact search
 # (time_of_impact none: every deep response pushed out) and the bundled mixed pile
-# (cubes, spheres and a plate settling with friction, 1 s), each through
-# traditional, cga and pga; each run's state hash (core/run.hpp: every
+# (cubes, spheres and a plate settling with friction, 1 s), and the landings
+# of a 10-layer square pyramid (bench/scale/pyramid_scene.py, 385 cubes, its
+# first 0.1 s: the direct solve's Schur-complement updates and augmented
+# factorisations; 7 layers for 0.05 s under GACOMPARE_QUICK_TESTS=1), each
+# through traditional, cga and pga; each run's state hash (core/run.hpp: every
 # sample's state, the solver's steps and every counter) printed by
 # gacompare-state-hash.
 #   determinism_test.sh TOOL BOX_SCENE_PY PILE_SCENE [OTHER_TOOL]
@@ -20,12 +23,14 @@ trap 'rm -rf "$dir"' EXIT
 # Under the sanitizers (GACOMPARE_QUICK_TESTS=1) a box of 300 bodies for 0.2 s:
 # the 1,000-body one took 140 s there, and --fine-grains below sends a small
 # box through every parallel path as well.
-bodies=1000 duration=0.3
-if [ "${GACOMPARE_QUICK_TESTS:-0}" = 1 ]; then bodies=300 duration=0.2; fi
+bodies=1000 duration=0.3 layers=10 landing=0.1
+if [ "${GACOMPARE_QUICK_TESTS:-0}" = 1 ]; then bodies=300 duration=0.2 layers=7 landing=0.05; fi
 python3 "$box_py" --bodies "$bodies" --seed 1 --duration "$duration" --every 0.1 >"$dir/box.json"
 python3 "$box_py" --bodies "$bodies" --seed 1 --duration "$duration" --every 0.1 --time-of-impact none \
   >"$dir/box_unsearched.json"
-scenes=("$dir/box.json" "$dir/box_unsearched.json" "$pile")
+python3 "$(dirname "$box_py")/pyramid_scene.py" --layers "$layers" --duration "$landing" --every "$landing" \
+  >"$dir/pyramid.json"
+scenes=("$dir/box.json" "$dir/box_unsearched.json" "$pile" "$dir/pyramid.json")
 backends=traditional,cga,pga
 "$tool" "${scenes[@]}" --backends "$backends" --threads 1 >"$dir/one"
 "$tool" "${scenes[@]}" --backends "$backends" --threads 2 >"$dir/two"
