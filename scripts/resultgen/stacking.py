@@ -45,6 +45,26 @@ def cost_against_bullet(table):
     return rows
 
 
+def pyramids_against_bullet(markdown):
+    """A headline row: each pyramid's time per simulated second over
+    Bullet's in the same `gacompare compare`, for the pyramids of 100 cubes
+    or more in bench/scale/pyramids.py's table (landing and at rest, 0.3 s)."""
+    t = next(t for t in tables(markdown) if t[0][0] == "layers")
+    seconds = {}
+    for row in t[1:]:
+        seconds.setdefault(int(row[1]), {})[row[2]] = float(row[3].split()[0])
+    parts = []
+    for cubes, by in sorted(seconds.items()):
+        if cubes < 100 or "bullet" not in by:
+            continue
+        ratios = ", ".join(f"{b} {by[b] / by['bullet']:.2f}×" for b in ("traditional", "cga") if b in by)
+        parts.append(f"{cubes:,} cubes: {ratios}")
+    if not parts:
+        return []
+    return [{"finding": "Square pyramids landing and at rest (0.3 s): time per simulated second / Bullet's",
+             "value": "; ".join(parts), "anchor": "#stacks-at-scale"}]
+
+
 def generate(ctx):
     args = [ctx.tool("bench", "stacking_table")]
     if ctx.quick:  # the short cases only, without Gauss-Seidel's column
@@ -66,7 +86,7 @@ def generate(ctx):
                                            "--sizes", layers, "--duration", "0.3"]))
     headline = [{"finding": "Stacks, pyramids and mass ratios held to their statics for 10 s",
                  "value": ", ".join(f"{c} {n[0]}/{n[1]}" for c, n in counts.items()),
-                 "anchor": "#the-family"}] + cost_against_bullet(table)
+                 "anchor": "#the-family"}] + cost_against_bullet(table) + pyramids_against_bullet(pyramids)
     return {"blocks": {"table": strip_command_line(table), "pgs": strip_command_line(pgs), "kept": kept,
                        "pyramids": pyramids},
             "headline": headline}

@@ -8,7 +8,7 @@ import unittest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from resultgen import common, contacts, dynamics, summary  # noqa: E402
+from resultgen import common, contacts, dynamics, stacking, summary  # noqa: E402
 
 spec = importlib.util.spec_from_file_location("check_docs", os.path.join(ROOT, "scripts", "check-docs.py"))
 check_docs = importlib.util.module_from_spec(spec)
@@ -33,6 +33,23 @@ class Fill(unittest.TestCase):
     def test_filling_twice_gives_the_same_page(self):
         once = common.fill(self.PAGE, {"a": "x", "b": "y"}, "page")
         self.assertEqual(once, common.fill(once, {"a": "x", "b": "y"}, "page"))
+
+
+class Pyramids(unittest.TestCase):
+    TABLE = ("| layers | cubes | backend | s per simulated s | contacts per step | factorisations per step | "
+             "active-set changes | farthest from rest (m) |\n|---:|---:|---|---:|---:|---:|---:|---:|\n"
+             "| 3 | 14 | traditional | 0.066 (0.066–0.066) | 110 | 0.263 | 14 | 0.0001 |\n"
+             "| 3 | 14 | bullet | 0.123 (0.123–0.123) | – | – | – | 9.7e-06 |\n"
+             "| 10 | 385 | traditional | 8 (7–9) | 4.62e+03 | 1.33 | 341 | 0.00027 |\n"
+             "| 10 | 385 | cga | 6 (6–6) | 4.62e+03 | 1.34 | 387 | 0.00027 |\n"
+             "| 10 | 385 | bullet | 4 (4–4) | – | – | – | 0.00014 |\n"
+             "| 15 | 1240 | traditional | 150 (150–150) | 1.59e+04 | 3.36 | 1950 | 0.00038 |\n")
+
+    def test_ratios_to_bullet_for_the_pyramids_of_a_hundred_cubes_or_more(self):
+        # 14 cubes is below the cut, and 1,240 cubes has no Bullet run to divide by.
+        [row] = stacking.pyramids_against_bullet(self.TABLE)
+        self.assertEqual(row["value"], "385 cubes: traditional 2.00×, cga 1.50×")
+        self.assertEqual(row["anchor"], "#stacks-at-scale")
 
 
 class Tables(unittest.TestCase):
