@@ -499,7 +499,6 @@ class ContactSolver {
       if (known && known->rows() == n) p.A = *known;
       else if (known && known->rows() > n && frictions.empty()) p.A = known->topLeftCorner(n, n);
       else p.A = delassus(lines, motion, moving);
-      if (n >= contact::BlcpSettings{}.augmented_from) p.G = body_factor(lines, motion, moving);
       if (known && known->rows() == 0) *known = p.A;
       Eigen::VectorXd held(n);
       for (Eigen::Index k = 0; k < nr; ++k) held[k] = rows[static_cast<std::size_t>(k)].lambda;
@@ -528,6 +527,10 @@ class ContactSolver {
       // pair's answer does not depend on an unrelated body that shares its island.
       std::vector<Eigen::Index> local(static_cast<std::size_t>(n), -1);
       const std::vector<std::vector<Eigen::Index>> groups = groups_of(lines, moving);
+      // A's factor by body, only where a group is large enough to be
+      // factorised in the augmented form (lcp.cpp).
+      if (std::ranges::any_of(groups, [&](const auto& g) { return static_cast<Eigen::Index>(g.size()) >= how.augmented_from; }))
+        p.G = body_factor(lines, motion, moving);
       for (const std::vector<Eigen::Index>& group : groups) {
         const auto m = static_cast<Eigen::Index>(group.size());
         for (Eigen::Index i = 0; i < m; ++i) local[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])] = i;
