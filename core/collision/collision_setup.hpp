@@ -59,7 +59,7 @@ struct CollisionCounters {
   // finish them), and how many
   // sweeps each solve took: sweep_histogram[k] counts solves of 2^k to
   // 2^(k+1) − 1 sweeps (the last bucket: the cap).
-  std::uint64_t solves = 0, direct_pivots = 0, direct_factorisations = 0, direct_updates = 0, direct_augmented = 0, direct_proximal = 0, direct_rounds = 0, direct_unsolved = 0;
+  std::uint64_t solves = 0, direct_pivots = 0, direct_factorisations = 0, direct_updates = 0, direct_augmented = 0, direct_held = 0, direct_proximal = 0, direct_rounds = 0, direct_unsolved = 0;
   // At rest (contact_solver.hpp): position projections skipped as idle, and
   // frictionless warm starts kept without a solve.
   std::uint64_t projections_skipped = 0, exact_starts = 0;

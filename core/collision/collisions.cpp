@@ -56,6 +56,7 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["direct_factorisations"] = direct_factorisations;
   out["direct_updates"] = direct_updates;
   out["direct_augmented_factorisations"] = direct_augmented;
+  out["direct_rows_held"] = direct_held;
   out["direct_proximal_steps"] = direct_proximal;
   out["direct_friction_rounds"] = direct_rounds;
   out["direct_unsolved"] = direct_unsolved;

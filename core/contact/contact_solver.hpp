@@ -659,6 +659,7 @@ class ContactSolver {
         counters.direct_factorisations += static_cast<std::uint64_t>(r.factorisations);
         counters.direct_updates += static_cast<std::uint64_t>(r.updates);
         counters.direct_augmented += static_cast<std::uint64_t>(r.augmented);
+        counters.direct_held += static_cast<std::uint64_t>(r.held);
         counters.direct_proximal += static_cast<std::uint64_t>(r.proximal);
         if (!r.solved) ++counters.direct_unsolved, solved = false;
         if (rubs.empty()) break;

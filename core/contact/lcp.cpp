@@ -469,9 +469,10 @@ double objective(const Blcp& p, const Eigen::VectorXd& c, const Eigen::VectorXd&
 // crosses one goes onto it: a projected Newton step, as in Bertsekas 1982
 // and the gradient projection of Moré & Toraldo 1991), and taken instead of
 // the ratio test's step when the objective is lower there. Every step still
-// lowers the objective, so the method still cannot cycle, and its answer is
-// still the free minimiser of the active set it ends on: the same answer,
-// bit for bit, wherever that set is the same.
+// lowers the objective (in exact arithmetic; the guard in active_set takes
+// care of floating point), and its answer is still the free minimiser of the
+// active set it ends on: the same answer, bit for bit, wherever that set is
+// the same.
 // `before` is λ before the ratio test's step, `lambda` after it; returns
 // whether the projection was taken (lambda and state then its).
 bool projected_step(const Blcp& p, const Eigen::VectorXd& c, const Eigen::VectorXd& delta,
@@ -509,6 +510,12 @@ bool active_set(const Blcp& p, const Eigen::VectorXd& c, const Eigen::VectorXd& 
                 BlcpResult& result) {
   const Eigen::Index n = c.size();
   std::vector<Eigen::Index> free(static_cast<std::size_t>(n));
+  // The guard against cycling (see below): the lowest objective at a release
+  // so far, the rows released at the last one, and the rows held on their
+  // bounds since the objective last fell.
+  double lowest = INFINITY;
+  std::vector<Eigen::Index> last_released;
+  std::vector<char> held(static_cast<std::size_t>(n), 0);
   for (;;) {
     if (result.pivots >= settings.max_pivots) return false;
     rows.clear();
@@ -567,13 +574,45 @@ bool active_set(const Blcp& p, const Eigen::VectorXd& c, const Eigen::VectorXd& 
     }
     // At the free rows' minimiser: release every row a bound holds against
     // the gradient (w of the regularised problem); none, and this is its answer.
+    //
+    // In exact arithmetic the objective then falls before the next release,
+    // so no active set recurs. In floating point it can stall and cycle: on
+    // a pyramid's redundant corners the free solve is exact only to ~1e-11
+    // in w (δ = 1e-10 of A's diagonal leaves A_FF + D_F that ill-conditioned),
+    // a row released at w ≈ −4e-11 comes back below its bound (the free
+    // solve gives it −2e-3), is blocked at a step of 0, and is released
+    // again: the same three active sets until the pivot limit, at one
+    // objective value. A rounding-level change to the solve (the augmented
+    // form's refinement residual computed as A_FF x + δx rather than with
+    // A_FF + D_F stored) sent 3 of 4 solves of a 6-layer pyramid's 1,024
+    // rows into such cycles, and b perturbed by 1e-15 of itself 7 of 24, in
+    // either factorisation (lcp_test's DegenerateCyclesEnd). So a row released at a release after which the
+    // objective did not fall (by more than 1e-12 of it, the objective's own
+    // rounding on a thousand rows) is held on its bound until it falls
+    // again; once every row that would be released is held, the answer is
+    // this one, its conditions violated only at the solve's noise (within
+    // what the refinement and the proximal steps below then measure). Each
+    // stalled release holds at least one more row, so the iterations end.
+    // This is an anti-cycling rule in the spirit of those for degenerate
+    // simplex and active-set steps (Bland 1977; Gill, Murray, Saunders &
+    // Wright, "A practical anti-cycling procedure", 1989), not either of them.
     const Eigen::VectorXd w = p.A * lambda + c + delta.cwiseProduct(lambda);
-    bool released = false;
+    const double now = objective(p, c, delta, lambda);
+    if (now < lowest - 1e-12 * std::abs(lowest) || lowest == INFINITY) {
+      std::fill(held.begin(), held.end(), 0);
+      lowest = std::min(lowest, now);
+    } else {
+      for (const Eigen::Index i : last_released) held[static_cast<std::size_t>(i)] = 1;
+    }
+    last_released.clear();
     for (Eigen::Index i = 0; i < n; ++i) {
       auto& st = state[static_cast<std::size_t>(i)];
-      if ((st == State::lower && w[i] < -tol) || (st == State::upper && w[i] > tol)) st = State::free, released = true;
+      if ((st == State::lower && w[i] < -tol) || (st == State::upper && w[i] > tol)) {
+        if (held[static_cast<std::size_t>(i)]) ++result.held;
+        else st = State::free, last_released.push_back(i);
+      }
     }
-    if (!released) return true;
+    if (last_released.empty()) return true;
     ++result.pivots;
   }
 }

@@ -19,9 +19,11 @@
 // solves the free rows' linear system with the other rows held on their
 // bounds and steps towards that answer as far as the bounds allow; a row that
 // a step blocks joins its bound, and at a free minimiser every row that its
-// bound holds against the gradient is released. The objective falls at every
-// step, so the method cannot cycle, and a warm start's active set is usually
-// already right: one factorisation is the common case. Where many rows meet
+// bound holds against the gradient is released. In exact arithmetic the
+// objective falls at every release, so the method cannot cycle; in floating
+// point a degenerate set can, and a guard holds the rows that cycle on their
+// bounds (lcp.cpp). A warm start's active set is usually already right: one
+// factorisation is the common case. Where many rows meet
 // their bounds at once (a stack landing), the free minimiser projected onto
 // the bounds is taken instead of the step to the first bound when it lowers
 // the objective more, so they join their bounds in one iteration (lcp.cpp).
@@ -83,6 +85,7 @@ struct BlcpResult {
   int updates = 0;         // active-set changes solved through the Schur complement instead (lcp.cpp)
   int augmented = 0;       // factorisations of the augmented system [I Gᵀ; G −δ] among them
   int proximal = 0;        // proximal steps taken to remove the regularisation's bias
+  int held = 0;            // rows the guard against cycling kept on their bounds, at each release (lcp.cpp)
   double residual = 0;     // the worst violation of the conditions above (w's units)
 };
 
