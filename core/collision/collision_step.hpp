@@ -15,11 +15,12 @@
 //   3. An island whose contacts are all within the penetration tolerance, and
 //      whose bodies move little enough in the step, responds at t1 (its own
 //      contact solve, Collider::respond).
-//   4. An island with a pair deeper than the tolerance, or with a body that
-//      could move more than half the smallest inradius in the step (it could
-//      pass through a thin body), is stepped alone from y0: its bodies only,
+//   4. An island with a pair deeper than the tolerance, or with a pair whose
+//      bodies could close on each other by more than the thinner one's
+//      inradius in the step (one could pass through the other:
+//      Collider::crossing), is stepped alone from y0: its bodies only,
 //      as a sub-model integrated with the scene's solver, in sub-steps short
-//      enough for its fastest body, each followed by a detection among its
+//      enough for its fastest pair, each followed by a detection among its
 //      bodies, a time-of-impact search when a pair went too deep (bisection or
 //      Illinois, rewinding and re-integrating the island only) and its
 //      response; then its state at t1 replaces the world's.
@@ -174,15 +175,19 @@ class CollisionStep {
       s_.counters.largest_island = std::max<std::uint64_t>(s_.counters.largest_island, is.moving);
       double deepest = -INFINITY;
       for (const auto& hit : hits[k]) deepest = std::max(deepest, hit.sat.depth);
-      double most = 0;  // the island's longest reach in the step
-      for (std::size_t i = 0; i < is.moving; ++i) most = std::max(most, margin[is.bodies[i]]);
-      if ((deepest <= tol || !searched()) && most <= 0.5 * setup.min_inradius) {
+      double worst = 0;  // the tunnelling rule's worst pair (Collider::crossing)
+      for (const std::size_t q : is.pairs) {
+        const auto [a, b] = d.candidates[q];
+        worst = std::max(worst, c_.crossing(a, b, margin[static_cast<std::size_t>(a)], margin[static_cast<std::size_t>(b)]));
+      }
+      const bool fast = worst > 1;
+      if ((deepest <= tol || !searched()) && !fast) {
         if (!searched() && deepest > tol) respond_and_push_out(is, d.candidates, hits[k], y, h, t1, profile);
         else if (!hits[k].empty()) c_.respond(s_, m_, y, setup.all_bodies, hits[k], h, profile);
         continue;
       }
       s_.counters.local_islands_deep += deepest > tol && searched();
-      s_.counters.local_islands_fast += most > 0.5 * setup.min_inradius;
+      s_.counters.local_islands_fast += fast;
       s_.counters.largest_local_island = std::max<std::uint64_t>(s_.counters.largest_local_island, is.moving);
       step_alone(is, d.candidates, hits[k], y, y0, t0, t1, profile);
     }
@@ -274,10 +279,17 @@ class CollisionStep {
     const double tol = setup.settings.penetration_tolerance;
     double t = t0;
     bool at_start = true;  // the world's integration already reached t1 from here
+    // The pairs deeper than the thinner body's inradius at t1, whose kept
+    // contacts there are dropped once the island goes back to an earlier
+    // state (Collider::forget_kept).
+    std::vector<std::pair<int, int>> deep_at_t1;
+    for (const auto& hit : at_t1)
+      if (hit.sat.depth > c_.thinner(hit.a, hit.b)) deep_at_t1.emplace_back(hit.a, hit.b);
+    const auto rewind = [&] { c_.forget_kept(s_, deep_at_t1), deep_at_t1.clear(); };
     for (int step = 0; t < t1; ++step) {
       if (step == kMaxIslandSteps) fail_stalled(a, ys, t, "the island took " + std::to_string(step) + " sub-steps");
       double h = t1 - t;
-      const double limited = c_.step_limit(a.model, ys, a.group, h);
+      const double limited = c_.step_limit(a.model, ys, a.group, among, h);
       if (limited < h) h = limited, ++s_.counters.shortened_steps;
       const double tb = t1 - (t + h) <= 1e-9 * h ? t1 : t + h;
       if (!(tb > t) || h < kLeastSubStep * setup.settings.step)
@@ -290,6 +302,7 @@ class CollisionStep {
         fail_if_nonfinite(a, ys, "integrate", tb);
         d = world_hits(at_t1, among, local);
       } else {
+        rewind();
         a.integrate(t, tb, ys, profile);
         fail_if_nonfinite(a, ys, "integrate", tb);
         d = c_.detect_among(s_, a.model, ys, a.group, among, profile);
@@ -297,6 +310,7 @@ class CollisionStep {
       at_start = false;
       double accepted = tb;
       if (d.max_depth > tol && searched()) {
+        rewind();
         accepted = TimeOfImpactStep<C>(c_, s_).find(a, d, t, yb, tb, ys, profile);
         fail_if_nonfinite(a, ys, "time_of_impact", accepted);
         d = c_.detect_among(s_, a.model, ys, a.group, among, profile);

@@ -141,9 +141,13 @@ std::optional<Refusal> over_step_budget(const Scene& s, const Model& model) {
     if (s.bodies[i].is_static) continue;
     if (const double vi = top_speed(s, scale, i, floor); vi > v) v = vi, fastest = i;
   }
-  // The collision loop moves no body more than half the smallest inradius in a
-  // step (core/collision/collisions.hpp): a body thinner than the penetration tolerance
-  // could be passed through before a contact is deep enough to be searched.
+  // The collision loop lets no two bodies that may meet close on each other by
+  // more than the thinner one's inradius in a step (Collider::crossing in
+  // core/collision/collisions.hpp); at worst (two of the thinnest bodies
+  // meeting head on, both at the top speed) that is a step of half the
+  // smallest inradius at the top speed, the bound on steps below. A body
+  // thinner than the penetration tolerance could be passed through before a
+  // contact is deep enough to be searched.
   const double inradius = scale[thinnest].inradius;
   if (!(inradius > c->penetration_tolerance))
     return Refusal{body_path(thinnest, "shape"),
@@ -160,7 +164,7 @@ std::optional<Refusal> over_step_budget(const Scene& s, const Model& model) {
                                     approx(steps) + " steps over " + fmt(s.duration) + " s"};
     return Refusal{body_path(fastest, "velocity"),
                    "expected speeds the collision loop can follow in at most " + fmt(lim.max_steps) +
-                       " steps (--max-steps raises it): a step moves no body more than half the smallest inradius (" +
+                       " steps (--max-steps raises it): at worst a step moves a body half the smallest inradius (" +
                        approx(inradius) + " m, body '" + s.bodies[thinnest].name + "'), and body '" +
                        s.bodies[fastest].name + "' may reach " + approx(v) + " m/s, so " + approx(steps) +
                        " steps over " + fmt(s.duration) + " s"};
