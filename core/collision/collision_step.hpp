@@ -66,6 +66,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 namespace gacompare::core {
@@ -175,12 +176,13 @@ class CollisionStep {
       s_.counters.largest_island = std::max<std::uint64_t>(s_.counters.largest_island, is.moving);
       double deepest = -INFINITY;
       for (const auto& hit : hits[k]) deepest = std::max(deepest, hit.sat.depth);
-      double worst = 0;  // the tunnelling rule's worst pair (Collider::crossing)
+      std::vector<std::pair<int, int>> fast_pairs;  // those the tunnelling rule refuses (Collider::crossing)
       for (const std::size_t q : is.pairs) {
         const auto [a, b] = d.candidates[q];
-        worst = std::max(worst, c_.crossing(a, b, margin[static_cast<std::size_t>(a)], margin[static_cast<std::size_t>(b)]));
+        if (c_.crossing(a, b, margin[static_cast<std::size_t>(a)], margin[static_cast<std::size_t>(b)]) > 1)
+          fast_pairs.push_back(d.candidates[q]);
       }
-      const bool fast = worst > 1;
+      const bool fast = !fast_pairs.empty();
       if ((deepest <= tol || !searched()) && !fast) {
         if (!searched() && deepest > tol) respond_and_push_out(is, d.candidates, hits[k], y, h, t1, profile);
         else if (!hits[k].empty()) c_.respond(s_, m_, y, setup.all_bodies, hits[k], h, profile);
@@ -189,7 +191,7 @@ class CollisionStep {
       s_.counters.local_islands_deep += deepest > tol && searched();
       s_.counters.local_islands_fast += fast;
       s_.counters.largest_local_island = std::max<std::uint64_t>(s_.counters.largest_local_island, is.moving);
-      step_alone(is, d.candidates, hits[k], y, y0, t0, t1, profile);
+      step_alone(is, d.candidates, hits[k], std::move(fast_pairs), y, y0, t0, t1, profile);
     }
   }
 
@@ -267,8 +269,12 @@ class CollisionStep {
   }
 
   // Step 4 above: the island from (t0, y0) to t1 in sub-steps of its own.
+  // `fast`: its pairs that the tunnelling rule refused over the whole step
+  // (world indices), whose kept contacts at t1 are dropped before the island
+  // goes back to an earlier state (Collider::forget_kept).
   void step_alone(const Island& is, const std::vector<std::pair<int, int>>& candidates, std::vector<PairHit>& at_t1,
-                  std::span<double> y, std::span<const double> y0, double t0, double t1, Profile& profile) const {
+                  std::vector<std::pair<int, int>> fast, std::span<double> y, std::span<const double> y0, double t0,
+                  double t1, Profile& profile) const {
     const auto& setup = c_.setup;
     Subsystem<Bodies> a = subsystem_of(is);
     ++s_.counters.local_islands;
@@ -279,13 +285,7 @@ class CollisionStep {
     const double tol = setup.settings.penetration_tolerance;
     double t = t0;
     bool at_start = true;  // the world's integration already reached t1 from here
-    // The pairs deeper than the thinner body's inradius at t1, whose kept
-    // contacts there are dropped once the island goes back to an earlier
-    // state (Collider::forget_kept).
-    std::vector<std::pair<int, int>> deep_at_t1;
-    for (const auto& hit : at_t1)
-      if (hit.sat.depth > c_.thinner(hit.a, hit.b)) deep_at_t1.emplace_back(hit.a, hit.b);
-    const auto rewind = [&] { c_.forget_kept(s_, deep_at_t1), deep_at_t1.clear(); };
+    const auto rewind = [&] { c_.forget_kept(s_, fast), fast.clear(); };
     for (int step = 0; t < t1; ++step) {
       if (step == kMaxIslandSteps) fail_stalled(a, ys, t, "the island took " + std::to_string(step) + " sub-steps");
       double h = t1 - t;
