@@ -5,6 +5,8 @@
 #include "core/error.hpp"
 #include "core/model/sha256.hpp"
 
+#include "../process_folder.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -17,19 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace gacompare::compare;
 
-// This process's folder of test files, removed when the tests end (ctest
-// runs each test in a process of its own, and each left a folder behind).
-fs::path root() { return fs::temp_directory_path() / ("gacompare_files_" + std::to_string(::getpid())); }
-struct RemoveRoot : ::testing::Environment {
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(root(), ignored);
-  }
-};
-[[maybe_unused]] ::testing::Environment* const kRemoveRoot = ::testing::AddGlobalTestEnvironment(new RemoveRoot);
-
 fs::path fresh(const std::string& name) {
-  const fs::path d = root() / name;
+  const fs::path d = gacompare::testing::process_folder("gacompare_files_") / name;
   fs::remove_all(d);
   return d;
 }

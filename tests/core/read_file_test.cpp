@@ -6,6 +6,8 @@
 
 #include "core/error.hpp"
 
+#include "../process_folder.hpp"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -20,19 +22,8 @@ using namespace gacompare;
 using core::Links;
 using core::read_file;
 
-// This process's folder of test files, removed when the tests end (ctest
-// runs each test in a process of its own, and each left a folder behind).
-fs::path root() { return fs::temp_directory_path() / ("gacompare_read_file_" + std::to_string(::getpid())); }
-struct RemoveRoot : ::testing::Environment {
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(root(), ignored);
-  }
-};
-[[maybe_unused]] ::testing::Environment* const kRemoveRoot = ::testing::AddGlobalTestEnvironment(new RemoveRoot);
-
 fs::path fresh(const std::string& name) {
-  const fs::path d = root() / name;
+  const fs::path d = gacompare::testing::process_folder("gacompare_read_file_") / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
