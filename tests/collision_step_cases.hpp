@@ -173,6 +173,60 @@ TYPED_TEST_P(CollisionStepCases, TheTunnellingRuleReadsThePairsOwnBodies) {
   for (const auto& sample : run.samples) EXPECT_GT(sample.bodies[1].position.z(), 0.05 - 1e-3) << "t=" << sample.t;
 }
 
+// The rule reads how fast a pair closes, not how fast its bodies move: two
+// 2 cm cubes (inradius 1 cm) meeting face on at a relative speed u of k
+// inradii per step, both also falling at V (0 or 30 m/s, 3 cm a step: three
+// inradii). A uniform field moves both alike, so the runs at V = 30 must be
+// sub-stepped exactly where those at V = 0 are, where k > 1; measured by the
+// sum of the two reaches, every V = 30 run was (checked: k = 0.5 fails).
+// In every case the cubes never pass through each other, and with a search
+// they part at e·u, e = 0.5 (face on, without spin: every contact has the
+// same approach speed, and the direct solve is exact to ~1e-12 of the
+// speeds; 1e-9 of u allows for that). With drag in the scene the bodies no
+// longer fall alike, and the rule takes the sum of the reaches again.
+TYPED_TEST_P(CollisionStepCases, TheTunnellingRuleReadsHowFastAPairCloses) {
+  const auto run_pair = [&](double k, double fall, core::TimeOfImpact method, bool drag) {
+    core::Scene s = this->drop();
+    for (auto& e : s.effects)
+      if (auto* c = std::get_if<core::Collisions>(&e)) c->time_of_impact = method;
+    if (drag) s.effects.push_back(core::LinearDrag{0.01, 0.0});
+    const double step = s.find_effect<core::Collisions>()->step, c = 0.02;
+    const double u = k * 0.5 * c / step;
+    const double gap = u * 10.5 * step;  // they meet mid-step
+    core::Body a = s.bodies[1];
+    a.shape = core::BoxShape{Eigen::Vector3d::Constant(c)};
+    a.orientation = {1, 0, 0, 0};
+    core::Body b = a;
+    a.name = "a", b.name = "b";
+    a.position = {-0.5 * (c + gap), 0, 5}, b.position = {0.5 * (c + gap), 0, 5};
+    a.velocity = {0.5 * u, 0, -fall}, b.velocity = {-0.5 * u, 0, -fall};
+    s.bodies = {s.bodies[0], a, b};
+    s.duration = 0.03;
+    s.output_every = 0.001;
+    return core::simulate<TypeParam>(s);
+  };
+  for (const double k : {0.5, 4.0, 30.0})
+    for (const double fall : {0.0, 30.0})
+      for (const auto method : {core::TimeOfImpact::bisection, core::TimeOfImpact::none}) {
+        const core::Run run = run_pair(k, fall, method, false);
+        const std::string at = "k = " + std::to_string(k) + ", falling at " + std::to_string(fall) + " m/s" +
+                               (method == core::TimeOfImpact::none ? ", no search" : ", bisection");
+        ASSERT_FALSE(run.error) << at << ": " << *run.error;
+        EXPECT_GT(run.counters.at("contacts"), 0u) << at;
+        EXPECT_EQ(run.counters.at("islands_stepped_alone_fast") > 0, k > 1) << at;
+        for (const auto& sample : run.samples)
+          EXPECT_GT(sample.bodies[2].position.x() - sample.bodies[1].position.x(), 0.02 - 1e-3)
+              << at << ": through each other at t = " << sample.t;
+        const double u = k * 0.5 * 0.02 / 0.001;
+        const double parting = run.samples.back().bodies[2].velocity.x() - run.samples.back().bodies[1].velocity.x();
+        if (method == core::TimeOfImpact::bisection) EXPECT_NEAR(parting, 0.5 * u, 1e-9 * u) << at;
+        else EXPECT_GT(parting, 0.0) << at;
+      }
+  const core::Run dragged = run_pair(0.5, 30.0, core::TimeOfImpact::bisection, true);
+  ASSERT_FALSE(dragged.error) << *dragged.error;
+  EXPECT_GT(dragged.counters.at("islands_stepped_alone_fast"), 0u);
+}
+
 // 1e12 m/s towards the slab: a sub-step short enough would be 1e-11 of the
 // collision step. The run stops at once with a run error naming the body and
 // the stage; the samples before it are kept.
@@ -595,6 +649,7 @@ REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithin
                             StepLimitOnlyWhereThereIsSomethingToHit, BodyTooFastForAnyStepStopsTheRunNamingIt,
                             StaticBoxFilterKeepsEveryPairInContact, ImpactTrialsIntegrateOnlyTheDeepPairsBodies,
                             PairsApartByMoreThanTheirReachDoNotLink, DenseOutputPairsRestartAfterAnImpact,
-                            FastBodiesNeverPassThroughThinPlates, TheTunnellingRuleReadsThePairsOwnBodies);
+                            FastBodiesNeverPassThroughThinPlates, TheTunnellingRuleReadsThePairsOwnBodies,
+                            TheTunnellingRuleReadsHowFastAPairCloses);
 
 }  // namespace gacompare::testing

@@ -114,6 +114,10 @@ struct CollisionSetup {
   }
   SolverSpec solver;          // the scene's: an island is integrated alone with it
   double gravity = 0;       // |g|
+  // Whether gravity is the only force on the bodies (no drag, no applied
+  // force): then two moving bodies fall alike, and only their relative motion
+  // closes them (Collider::closing).
+  bool gravity_alone = true;
   double resting_speed = 0;  // v_rest above
   double min_inradius = 0;
 };

@@ -18,7 +18,7 @@
 //   4. An island with a pair deeper than the tolerance, or with a pair whose
 //      bodies could close on each other by more than the thinner one's
 //      inradius in the step (one could pass through the other:
-//      Collider::crossing), is stepped alone from y0: its bodies only,
+//      Collider::closing and Collider::crossing), is stepped alone from y0: its bodies only,
 //      as a sub-model integrated with the scene's solver, in sub-steps short
 //      enough for its fastest pair, each followed by a detection among its
 //      bodies, a time-of-impact search when a pair went too deep (bisection or
@@ -179,7 +179,12 @@ class CollisionStep {
       std::vector<std::pair<int, int>> fast_pairs;  // those the tunnelling rule refuses (Collider::crossing)
       for (const std::size_t q : is.pairs) {
         const auto [a, b] = d.candidates[q];
-        if (c_.crossing(a, b, margin[static_cast<std::size_t>(a)], margin[static_cast<std::size_t>(b)]) > 1)
+        const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+        // The relative motion only where the reaches' sum breaks the rule,
+        // and not beside a sleeping body, which stays put while the other falls.
+        if (c_.crossing(a, b, margin[ua] + margin[ub]) > 1 &&
+            (s_.sleep.is_asleep(ua) || s_.sleep.is_asleep(ub) ||
+             c_.crossing(a, b, c_.closing(m_, y0, setup.all_bodies, ua, ub, margin[ua], margin[ub], h)) > 1))
           fast_pairs.push_back(d.candidates[q]);
       }
       const bool fast = !fast_pairs.empty();

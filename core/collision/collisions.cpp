@@ -111,6 +111,8 @@ CollisionSetup collision_setup(const Scene& scene, const Model& model) {
   s.settings = *scene.find_effect<Collisions>();
   s.solver = scene.solver;
   s.gravity = model.gravity;
+  const BodyEffects& fx = model.effects;
+  s.gravity_alone = !fx.has_linear_drag && !fx.has_quadratic_drag && fx.pushes.empty();
   s.resting_speed = model.resting_speed;
   s.min_inradius = model.min_inradius;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
