@@ -96,6 +96,19 @@ struct CollisionSetup {
   std::vector<std::shared_ptr<const Mesh>> meshes;
   std::vector<Vec3> sphere_centre;  // body frame
   std::vector<double> sphere_radius, inradius, restitution;
+  // The farthest a point of each body is from its centre of mass (the arm of
+  // its spin in the speed bounds, Collider::rim_speed): its farthest vertex,
+  // exact for a round shape too (its proxy's vertices lie on it). The
+  // bounding sphere's radius, used before, is that only for a sphere centred
+  // on the centre of mass: a tall pyramid's apex (1.5 m from its centre of
+  // mass, its sphere 1.125 m) outran its reach.
+  std::vector<double> arm;
+  // The most the applied forces on each body can add to its acceleration:
+  // Σ|F|/m at its centre of mass and Σ|p||F|/I_min of angular acceleration
+  // (p each force's point from the centre of mass, I_min the least principal
+  // moment), whichever of its forces act: a bound for any step. 0 for a body
+  // no force pushes. Drag only slows a body, and adds nothing.
+  std::vector<double> push_linear, push_angular;
   std::vector<double> friction;  // each body's μ (core/model/scene.hpp Body::friction)
   std::vector<char> is_static;
   // A static body's box in its own frame (the mesh's bounding box, centre and

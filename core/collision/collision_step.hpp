@@ -433,8 +433,7 @@ class CollisionStep {
     double most = -1;
     for (std::size_t k = 0; k < a.group.size(); ++k) {
       if (c_.setup.is_static[a.group[k]]) continue;
-      const auto mo = Bodies::motion(a.model, ys, k);
-      const double rim = Bodies::speed(mo) + c_.setup.sphere_radius[a.group[k]] * Bodies::angular_speed(mo);
+      const double rim = c_.rim_speed(a.model, ys, a.group, k);
       if (rim > most) most = rim, fastest = k;
     }
     std::ostringstream msg;

@@ -123,6 +123,7 @@ CollisionSetup collision_setup(const Scene& scene, const Model& model) {
     s.names.push_back(scene.bodies[i].name);
     s.meshes.push_back(b.mesh);
     s.inradius.push_back(b.inradius);
+    s.arm.push_back(b.radius);
     s.restitution.push_back(b.restitution);
     s.friction.push_back(b.friction);
     s.is_static.push_back(b.is_static);
@@ -131,7 +132,14 @@ CollisionSetup collision_setup(const Scene& scene, const Model& model) {
     s.all_bodies.push_back(static_cast<int>(s.all_bodies.size()));
   }
   s.pushed.resize(scene.bodies.size());
-  for (const auto& push : model.effects.pushes) s.pushed[push.body].emplace_back(push.from, push.until);
+  s.push_linear.assign(scene.bodies.size(), 0.0);
+  s.push_angular.assign(scene.bodies.size(), 0.0);
+  for (const auto& push : fx.pushes) {
+    const BodyModel& b = model.bodies[push.body];
+    s.pushed[push.body].emplace_back(push.from, push.until);
+    s.push_linear[push.body] += push.force.norm() / b.mass;
+    s.push_angular[push.body] += push.point.norm() * push.force.norm() / b.moments.minCoeff();
+  }
   return s;
 }
 

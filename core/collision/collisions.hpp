@@ -202,18 +202,27 @@ struct Collider {
 
   // --- how far bodies can move in a step (the islands' links, sub-steps) ---
 
-  // How fast body k's rim can move: |v| + ρ|ω|, ρ its bounding radius.
+  // How fast body k's rim can move: |v| + ρ|ω|, ρ its arm (setup.arm: no
+  // point of it is farther from its centre of mass).
   double rim_speed(const Model& m, std::span<const double> y, BodyIndices group, std::size_t k) const {
     if (setup.is_static[group[k]]) return 0;
     const auto mo = Bodies::motion(m, y, k);
-    return Bodies::speed(mo) + setup.sphere_radius[group[k]] * Bodies::angular_speed(mo);
+    return Bodies::speed(mo) + setup.arm[group[k]] * Bodies::angular_speed(mo);
+  }
+
+  // The most any point of body w (world index) can be accelerated: gravity,
+  // and the applied forces' push on its centre and turn about it at its arm.
+  double acceleration(int w) const {
+    const auto u = static_cast<std::size_t>(w);
+    return setup.gravity + setup.push_linear[u] + setup.arm[u] * setup.push_angular[u];
   }
 
   // How far body k of the group can move in h: a point at distance ρ from the
-  // centre moves at most (|v| + ρ|ω|) h, and gravity adds ½ g h². 0 when static.
+  // centre of mass moves at most (|v| + ρ|ω|) h, and what accelerates it
+  // (gravity, applied forces) adds ½ a h². 0 when static.
   double reach(const Model& m, std::span<const double> y, BodyIndices group, std::size_t k, double h) const {
     if (setup.is_static[group[k]]) return 0;
-    return rim_speed(m, y, group, k) * h + 0.5 * setup.gravity * h * h;
+    return rim_speed(m, y, group, k) * h + 0.5 * acceleration(group[k]) * h * h;
   }
 
   // How far bodies k and l of a group (awake, at state y) can close on each
@@ -235,8 +244,7 @@ struct Collider {
     if (!setup.gravity_alone || setup.is_static[group[k]] || setup.is_static[group[l]]) return apart;
     const auto mk = Bodies::motion(m, y, k), ml = Bodies::motion(m, y, l);
     const Vec3 dv = Bodies::point_velocity(mk, Bodies::position(mk)) - Bodies::point_velocity(ml, Bodies::position(ml));
-    const double spin = setup.sphere_radius[group[k]] * Bodies::angular_speed(mk) +
-                        setup.sphere_radius[group[l]] * Bodies::angular_speed(ml);
+    const double spin = setup.arm[group[k]] * Bodies::angular_speed(mk) + setup.arm[group[l]] * Bodies::angular_speed(ml);
     return std::min(apart, (dv.norm() + spin) * h);
   }
 

@@ -7,7 +7,7 @@
 // and Bullet put an island to sleep once all its bodies have been slow for a
 // while; we do the same, with the islands of the collision step
 // (core/collision/islands.hpp) as the groups and the rim speed |v| + ρ|ω|
-// (ρ the bounding radius, the speed bound of Collider::reach) as the measure:
+// (ρ the body's arm, the speed bound of Collider::reach) as the measure:
 //
 //   * Falling asleep. After each collision step, a moving body whose rim
 //     speed at t1 is at most `speed` and on which no applied force acts has

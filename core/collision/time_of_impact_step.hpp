@@ -170,7 +170,8 @@ class TimeOfImpactStep {
 
   // Conservative advancement's bound of how fast the pairs' depth can grow:
   // the largest sum of the two bodies' rim speeds, each the larger at the
-  // interval's two ends plus what gravity adds over it.
+  // interval's two ends plus what its acceleration (Collider::acceleration)
+  // adds over it.
   double closing_speed(const Subsystem<Bodies>& a, const std::vector<std::pair<int, int>>& pairs, const std::vector<double>& yb,
                        const std::vector<double>& ys, double h) const {
     if (c_.setup.settings.time_of_impact != TimeOfImpact::conservative_advancement) return 0;
@@ -178,7 +179,7 @@ class TimeOfImpactStep {
       const auto b = static_cast<std::size_t>(k);
       if (c_.setup.is_static[a.group[b]]) return 0.0;
       return std::max(c_.rim_speed(a.model, yb, a.group, b), c_.rim_speed(a.model, ys, a.group, b)) +
-             c_.setup.gravity * h;
+             c_.acceleration(a.group[b]) * h;
     };
     double most = 0;
     for (const auto& [i, j] : pairs) most = std::max(most, rim(i) + rim(j));
