@@ -265,7 +265,7 @@ struct Collider {
 
   // How long a step of the group may be: the tunnelling rule for every pair
   // (in the group's numbering) it may test. A closing is at most linear in h
-  // (speeds × h + ½ g h²), so h shortened by the worst ratio meets it. The
+  // (speeds × h + ½ a h²), so h shortened by the worst ratio meets it. The
   // relative motion is read only for a pair whose reaches' sum breaks the
   // rule: it can only lower the ratio.
   double step_limit(const Model& m, std::span<const double> y, BodyIndices group,
