@@ -285,8 +285,8 @@ class CollisionStep {
     ++s_.counters.local_islands;
     s_.counters.local_island_bodies += is.moving;
     std::vector<double> ys = a.gather(y0), yb;
-    const auto local = [&](int w) { return local_index(is, w); };
-    const std::vector<std::pair<int, int>> among = island_pairs(is, candidates);
+    const Numbering local = numbering(is);
+    const std::vector<std::pair<int, int>> among = island_pairs(is, candidates, local);
     const double tol = setup.settings.penetration_tolerance;
     double t = t0;
     bool at_start = true;  // the world's integration already reached t1 from here
@@ -351,23 +351,40 @@ class CollisionStep {
   }
 
   // Body w of the world in an island's own numbering (its moving bodies, then
-  // its static ones, each ascending).
-  static int local_index(const Island& is, int w) {
-    const auto movers = is.bodies.begin() + static_cast<long>(is.moving);
-    const auto at = std::lower_bound(is.bodies.begin(), movers, w);
-    return static_cast<int>((at != movers && *at == w ? at : std::lower_bound(movers, is.bodies.end(), w)) -
-                            is.bodies.begin());
-  }
+  // its static ones, each ascending), read from a table of every world body
+  // that holds the island's numbers while the Numbering lives (one island at
+  // a time): a lookup per body, where two binary searches over the island's
+  // bodies per pair took 0.8 s of the 10,000-body box's run on its pile.
+  class Numbering {
+   public:
+    Numbering(std::vector<int>& table, const Island& is, std::size_t n) : table_(table), is_(is) {
+      if (table_.size() != n) table_.assign(n, -1);
+      for (std::size_t k = 0; k < is.bodies.size(); ++k) table_[static_cast<std::size_t>(is.bodies[k])] = static_cast<int>(k);
+    }
+    Numbering(const Numbering&) = delete;
+    Numbering& operator=(const Numbering&) = delete;
+    ~Numbering() {
+      for (const int w : is_.bodies) table_[static_cast<std::size_t>(w)] = -1;
+    }
+    int operator()(int w) const { return table_[static_cast<std::size_t>(w)]; }
+
+   private:
+    std::vector<int>& table_;
+    const Island& is_;
+  };
+  mutable std::vector<int> numbers_;  // Numbering's table, −1 outside the island it numbers
+  Numbering numbering(const Island& is) const { return Numbering(numbers_, is, c_.setup.all_bodies.size()); }
 
   // The island's candidate pairs in its own numbering: within the step its
   // bodies can meet only each other and the static bodies they link to. In
   // the order a broadphase gives its pairs, so the contacts are solved in the
   // same order as if the island had been swept afresh.
-  static std::vector<std::pair<int, int>> island_pairs(const Island& is, const std::vector<std::pair<int, int>>& candidates) {
+  static std::vector<std::pair<int, int>> island_pairs(const Island& is, const std::vector<std::pair<int, int>>& candidates,
+                                                       const Numbering& local) {
     std::vector<std::pair<int, int>> among;
     among.reserve(is.pairs.size());
     for (const std::size_t k : is.pairs) {
-      const int i = local_index(is, candidates[k].first), j = local_index(is, candidates[k].second);
+      const int i = local(candidates[k].first), j = local(candidates[k].second);
       among.emplace_back(std::min(i, j), std::max(i, j));
     }
     std::sort(among.begin(), among.end());
@@ -385,8 +402,8 @@ class CollisionStep {
     const std::vector<double> before = a.gather(y);
     c_.respond(s_, m_, y, c_.setup.all_bodies, hits, h, profile);
     std::vector<double> ys = a.gather(y);
-    push_out(a, island_pairs(is, candidates), pair_depths(hits, [&](int w) { return local_index(is, w); }), before, ys,
-             t1, profile);
+    const Numbering local = numbering(is);
+    push_out(a, island_pairs(is, candidates, local), pair_depths(hits, local), before, ys, t1, profile);
     a.scatter(ys, y);
   }
   void push_out(const Subsystem<Bodies>& a, const std::vector<std::pair<int, int>>& among,
