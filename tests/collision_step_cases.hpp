@@ -182,10 +182,13 @@ TYPED_TEST_P(CollisionStepCases, TheTunnellingRuleReadsThePairsOwnBodies) {
 // In every case the cubes never pass through each other, and with a search
 // they part at e·u, e = 0.5 (face on, without spin: every contact has the
 // same approach speed, and the direct solve is exact to ~1e-12 of the
-// speeds; 1e-9 of u allows for that). With drag in the scene the bodies no
+// speeds; 1e-9 of u allows for that). Spun about their line of approach at
+// 400 rad/s, the slow pair (k = 0.5) closes by more than an inradius a step
+// (each rim moves 7 mm, its arm 1.7 cm) and must be sub-stepped, falling or
+// not: the closing counts the spins. With drag in the scene the bodies no
 // longer fall alike, and the rule takes the sum of the reaches again.
 TYPED_TEST_P(CollisionStepCases, TheTunnellingRuleReadsHowFastAPairCloses) {
-  const auto run_pair = [&](double k, double fall, core::TimeOfImpact method, bool drag) {
+  const auto run_pair = [&](double k, double fall, core::TimeOfImpact method, bool drag, double spin = 0) {
     core::Scene s = this->drop();
     for (auto& e : s.effects)
       if (auto* c = std::get_if<core::Collisions>(&e)) c->time_of_impact = method;
@@ -200,6 +203,7 @@ TYPED_TEST_P(CollisionStepCases, TheTunnellingRuleReadsHowFastAPairCloses) {
     a.name = "a", b.name = "b";
     a.position = {-0.5 * (c + gap), 0, 5}, b.position = {0.5 * (c + gap), 0, 5};
     a.velocity = {0.5 * u, 0, -fall}, b.velocity = {-0.5 * u, 0, -fall};
+    a.angular_velocity = {spin, 0, 0}, b.angular_velocity = {-spin, 0, 0};
     s.bodies = {s.bodies[0], a, b};
     s.duration = 0.03;
     s.output_every = 0.001;
@@ -222,6 +226,14 @@ TYPED_TEST_P(CollisionStepCases, TheTunnellingRuleReadsHowFastAPairCloses) {
         if (method == core::TimeOfImpact::bisection) EXPECT_NEAR(parting, 0.5 * u, 1e-9 * u) << at;
         else EXPECT_GT(parting, 0.0) << at;
       }
+  for (const double fall : {0.0, 30.0}) {
+    const core::Run spun = run_pair(0.5, fall, core::TimeOfImpact::bisection, false, 400);
+    ASSERT_FALSE(spun.error) << *spun.error;
+    EXPECT_GT(spun.counters.at("contacts"), 0u) << "spun, falling at " << fall;
+    EXPECT_GT(spun.counters.at("islands_stepped_alone_fast"), 0u) << "spun, falling at " << fall;
+    for (const auto& sample : spun.samples)
+      EXPECT_GT(sample.bodies[2].position.x() - sample.bodies[1].position.x(), 0.02 - 1e-3) << "spun, t = " << sample.t;
+  }
   const core::Run dragged = run_pair(0.5, 30.0, core::TimeOfImpact::bisection, true);
   ASSERT_FALSE(dragged.error) << *dragged.error;
   EXPECT_GT(dragged.counters.at("islands_stepped_alone_fast"), 0u);

@@ -180,11 +180,8 @@ class CollisionStep {
       for (const std::size_t q : is.pairs) {
         const auto [a, b] = d.candidates[q];
         const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
-        // The relative motion only where the reaches' sum breaks the rule,
-        // and not beside a sleeping body, which stays put while the other falls.
-        if (c_.crossing(a, b, margin[ua] + margin[ub]) > 1 &&
-            (s_.sleep.is_asleep(ua) || s_.sleep.is_asleep(ub) ||
-             c_.crossing(a, b, c_.closing(m_, y0, setup.all_bodies, ua, ub, margin[ua], margin[ub], h)) > 1))
+        const bool held = s_.sleep.is_asleep(ua) || s_.sleep.is_asleep(ub);
+        if (c_.crossing_of(m_, y0, setup.all_bodies, ua, ub, margin[ua], margin[ub], h, held) > 1)
           fast_pairs.push_back(d.candidates[q]);
       }
       const bool fast = !fast_pairs.empty();

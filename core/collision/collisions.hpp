@@ -263,11 +263,20 @@ struct Collider {
     return closing / std::min(setup.inradius[static_cast<std::size_t>(a)], setup.inradius[static_cast<std::size_t>(b)]);
   }
 
+  // The tunnelling rule for bodies k and l of a group whose reaches in h are
+  // given: the ratio of their reaches' sum, and where that breaks the rule,
+  // of their closing (which can only lower it). `held`: one of them is
+  // asleep, and stays put while the other falls, so the sum stands.
+  double crossing_of(const Model& m, std::span<const double> y, BodyIndices group, std::size_t k, std::size_t l,
+                     double reach_k, double reach_l, double h, bool held = false) const {
+    const double ratio = crossing(group[k], group[l], reach_k + reach_l);
+    if (ratio <= 1 || held) return ratio;
+    return crossing(group[k], group[l], closing(m, y, group, k, l, reach_k, reach_l, h));
+  }
+
   // How long a step of the group may be: the tunnelling rule for every pair
   // (in the group's numbering) it may test. A closing is at most linear in h
-  // (speeds × h + ½ a h²), so h shortened by the worst ratio meets it. The
-  // relative motion is read only for a pair whose reaches' sum breaks the
-  // rule: it can only lower the ratio.
+  // (speeds × h + ½ a h²), so h shortened by the worst ratio meets it.
   double step_limit(const Model& m, std::span<const double> y, BodyIndices group,
                     const std::vector<std::pair<int, int>>& pairs, double h) const {
     std::vector<double> r(group.size());
@@ -275,9 +284,7 @@ struct Collider {
     double worst = 0;
     for (const auto& [a, b] : pairs) {
       const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
-      double ratio = crossing(group[ua], group[ub], r[ua] + r[ub]);
-      if (ratio > std::max(worst, 1.0)) ratio = crossing(group[ua], group[ub], closing(m, y, group, ua, ub, r[ua], r[ub], h));
-      worst = std::max(worst, ratio);
+      worst = std::max(worst, crossing_of(m, y, group, ua, ub, r[ua], r[ub], h));
     }
     return worst > 1 ? h / worst : h;
   }
