@@ -73,24 +73,6 @@ inline int axis_of_largest_spread(std::span<const Vec3> centres) {
   return axis;
 }
 
-// Pairs (i, j) of n bodies into ascending order, by two stable counting
-// sorts (on j, then on i): O(n + k) for k pairs, where a comparison sort took
-// a third of the broadphase's time on the islands' sweeps (thousands of pairs
-// per sub-step of a pile of bodies).
-inline void sort_pairs(std::vector<std::pair<int, int>>& pairs, std::size_t n) {
-  if (pairs.size() < 64) return std::sort(pairs.begin(), pairs.end());
-  std::vector<std::pair<int, int>> tmp(pairs.size());
-  std::vector<std::size_t> start(n + 1);
-  const auto pass = [&](auto key, const std::vector<std::pair<int, int>>& from, std::vector<std::pair<int, int>>& to) {
-    std::fill(start.begin(), start.end(), 0);
-    for (const auto& p : from) ++start[static_cast<std::size_t>(key(p)) + 1];
-    for (std::size_t k = 1; k <= n; ++k) start[k] += start[k - 1];
-    for (const auto& p : from) to[start[static_cast<std::size_t>(key(p))]++] = p;
-  };
-  pass([](const std::pair<int, int>& p) { return p.second; }, pairs, tmp);
-  pass([](const std::pair<int, int>& p) { return p.first; }, tmp, pairs);
-}
-
 // `given`: the radii the spheres were built with (Ops::sphere), or empty to
 // read them off the spheres.
 template <BoundingSphereOps Ops>

@@ -384,7 +384,7 @@ class CollisionStep {
       const int i = local(candidates[k].first), j = local(candidates[k].second);
       among.emplace_back(std::min(i, j), std::max(i, j));
     }
-    std::sort(among.begin(), among.end());
+    sort_pairs(among, is.bodies.size());
     return among;
   }
 

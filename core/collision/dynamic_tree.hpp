@@ -111,22 +111,33 @@ class DynamicTree {
   // volume tested is counted (volume_tests).
   template <class F>
   void query(const Volume& q, F&& on_leaf) const {
-    if (root_ == kNull) return;
-    stack_.clear();
-    stack_.push_back(root_);
-    while (!stack_.empty()) {
-      const Node& node = nodes_[static_cast<std::size_t>(stack_.back())];
-      stack_.pop_back();
-      ++tests_;
+    tests_ += query(q, stack_, on_leaf);
+  }
+  // The same with the caller's stack, counting nothing in the tree: it reads
+  // the tree only, so queries on several threads may run at once (each with
+  // its own stack). Returns the volumes tested.
+  template <class F>
+  std::int64_t query(const Volume& q, std::vector<int>& stack, F&& on_leaf) const {
+    if (root_ == kNull) return 0;
+    std::int64_t tests = 0;
+    stack.clear();
+    stack.push_back(root_);
+    while (!stack.empty()) {
+      const Node& node = nodes_[static_cast<std::size_t>(stack.back())];
+      stack.pop_back();
+      ++tests;
       if (!V::overlap(node.volume, q)) continue;
       if (node.leaf()) {
         on_leaf(node.item);
       } else {
-        stack_.push_back(node.child1);
-        stack_.push_back(node.child2);
+        stack.push_back(node.child1);
+        stack.push_back(node.child2);
       }
     }
+    return tests;
   }
+  // Adds volume tests counted by the caller (queries with their own stacks).
+  void count_volume_tests(std::int64_t tests) const { tests_ += tests; }
 
   void clear() {
     nodes_.clear();

@@ -43,16 +43,9 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   // where they are. Their lookups miss the cache at scale (the tables of
   // 10,000 bodies' pairs are megabytes): on one thread, with each pair's
   // axis looked up twice, they were a seventh of the 10,000-body box's run.
-  struct Slot {
-    PairHit h;
-    collision::SatHint hint;
-    collision::FaceChoice choice;
-    collision::SatHint* hint_entry = nullptr;       // the pair's remembered axis, if it has one
-    collision::KeptContacts* kept_entry = nullptr;  // its kept contacts, refused or not, if any
-    bool apart = false, kept = false;
-    std::uint64_t face_tested = 0, shapes = 0;
-  };
-  std::vector<Slot> slots;
+  using Slot = NarrowSlot;
+  std::vector<Slot>& slots = state.slots;
+  slots.clear();
   slots.reserve(pairs.size());
   if (reuse && state.shapes.size() != setup.meshes.size())
     state.shapes.resize(setup.meshes.size()), state.placed_in.assign(setup.meshes.size(), 0);

@@ -6,6 +6,7 @@
 #include "core/stage.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -18,20 +19,18 @@ namespace gacompare::core {
 // (set_group_step_of, core/dynamics/ode.hpp): every body's step reads only
 // its own state and forces (core/dynamics/lie_bodies.hpp), so an island and
 // a time-of-impact trial move on the group as they move in the world.
+// The solver is built on the first integration: a push-out only reads and
+// moves the island's state, and the solver's work vectors (ten of the
+// island's state size, zeroed) cost a pile of thousands of bodies megabytes
+// at every response.
 template <class Bodies>
 struct Subsystem {
   using Model = typename Bodies::Model;
   Model model;
   std::span<const int> group;
   std::size_t stride;
-  OdeSolver solver;
   Subsystem(const Model& m, std::span<const int> bodies, std::size_t stride_, const SolverSpec& spec)
-      : model(Bodies::subset(m, bodies)), group(bodies), stride(stride_), solver(spec, bodies.size() * stride_) {
-    solver.set_error_norm([this, spec](std::span<const double> a, std::span<const double> b, std::span<const double> e) {
-      return Bodies::error_ratio(model, a, b, e, spec.abs_tol, spec.rel_tol);
-    });
-    set_group_step_of<Bodies>(solver, model);  // `model` is a member: it lives as long as the solver
-  }
+      : model(Bodies::subset(m, bodies)), group(bodies), stride(stride_), spec_(spec) {}
   Subsystem(const Subsystem&) = delete;
   Subsystem& operator=(const Subsystem&) = delete;
   std::vector<double> gather(std::span<const double> y) const {
@@ -53,8 +52,23 @@ struct Subsystem {
       Bodies::derivative(model, tt, yy, dy);
     };
     auto after = [&](std::vector<double>& yy) { return Bodies::renormalise(model, yy); };
-    solver.advance(f, t, t_end, ys, profile, after);
+    solver().advance(f, t, t_end, ys, profile, after);
   }
+
+  // The scene's solver for these bodies, built on first use.
+  OdeSolver& solver() {
+    if (solver_) return *solver_;
+    OdeSolver& s = solver_.emplace(spec_, group.size() * stride);
+    s.set_error_norm([this](std::span<const double> a, std::span<const double> b, std::span<const double> e) {
+      return Bodies::error_ratio(model, a, b, e, spec_.abs_tol, spec_.rel_tol);
+    });
+    set_group_step_of<Bodies>(s, model);  // `model` is a member: it lives as long as the solver
+    return s;
+  }
+
+ private:
+  SolverSpec spec_;
+  std::optional<OdeSolver> solver_;
 };
 
 }  // namespace gacompare::core

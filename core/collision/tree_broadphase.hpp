@@ -35,6 +35,7 @@
 // margin only adds kept pairs, which the exact test removes.
 #include "core/collision/bounding_volume.hpp"
 #include "core/collision/dynamic_tree.hpp"
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <concepts>
@@ -53,6 +54,30 @@ namespace gacompare::core {
 // fast as its reinsertions fall; a denser scene keeps more pairs per margin,
 // so one margin for both trees (bench/broadphase_bench.cpp margin<M>_coherent_1000).
 inline constexpr double kFatMargin = 0.4;
+
+// Moved bodies per block of tree queries on the run's threads: a query of a
+// 10,000-body tree tests some hundred volumes, about a microsecond, so a
+// block holds the ~100 µs a chunk needs (core/parallel.hpp).
+inline constexpr std::size_t kGrainQuery = 128;
+
+// Pairs (i, j) of n bodies into ascending order, by two stable counting
+// sorts (on j, then on i): O(n + k) for k pairs, where a comparison sort took
+// a third of the broadphase's time on the islands' sweeps (thousands of pairs
+// per sub-step of a pile of bodies). Also the trees' fresh pairs and an
+// island's own pairs (core/collision/collision_step.hpp).
+inline void sort_pairs(std::vector<std::pair<int, int>>& pairs, std::size_t n) {
+  if (pairs.size() < 64) return std::sort(pairs.begin(), pairs.end());
+  std::vector<std::pair<int, int>> tmp(pairs.size());
+  std::vector<std::size_t> start(n + 1);
+  const auto pass = [&](auto key, const std::vector<std::pair<int, int>>& from, std::vector<std::pair<int, int>>& to) {
+    std::fill(start.begin(), start.end(), 0);
+    for (const auto& p : from) ++start[static_cast<std::size_t>(key(p)) + 1];
+    for (std::size_t k = 1; k <= n; ++k) start[k] += start[k - 1];
+    for (const auto& p : from) to[start[static_cast<std::size_t>(key(p))]++] = p;
+  };
+  pass([](const std::pair<int, int>& p) { return p.second; }, pairs, tmp);
+  pass([](const std::pair<int, int>& p) { return p.first; }, tmp, pairs);
+}
 
 // What a sphere tree needs of a backend beyond the BoundingSphereOps: the node
 // operations of traditional/bounding_volume.hpp and cga/bounding_volume.hpp.
@@ -152,28 +177,46 @@ class TreeBroadphase {
     }
     const bool growing = !b.margins.empty();
     TreeWork work;
+    const auto tight = [&](std::size_t i) {
+      return V::bound(b.centres[i], b.radii[i] + (growing ? b.margins[i] : 0.0), b.grown[i]);
+    };
+    // Which bodies left their fat volumes, on the run's threads: a body's test
+    // reads only its own leaf, which no other body's reinsertion changes (a
+    // leaf is never moved in place), so reinserting afterwards in body order
+    // builds the tree a test-then-reinsert pass over the bodies would.
     moved_.assign(n, 0);
+    for_each_index(n, [&](std::size_t i) {
+      moved_[i] = leaf_[i] == kNull || !V::contains(tree_of(i).volume(leaf_[i]), tight(i));
+    }, kGrainLight);
     bool any = false;
     for (std::size_t i = 0; i < n; ++i) {
-      const auto tight = V::bound(b.centres[i], b.radii[i] + (growing ? b.margins[i] : 0.0), b.grown[i]);
+      if (!moved_[i]) continue;
       Tree& tree = tree_of(i);
-      if (leaf_[i] != kNull && V::contains(tree.volume(leaf_[i]), tight)) continue;
       if (leaf_[i] != kNull) tree.remove(leaf_[i]);
-      leaf_[i] = tree.insert(V::grown(tight, margin_ * b.radii[i]), static_cast<int>(i));
-      moved_[i] = 1, any = true;
+      leaf_[i] = tree.insert(V::grown(tight(i), margin_ * b.radii[i]), static_cast<int>(i));
+      any = true;
       ++work.reinserted;
     }
     if (any) find_pairs_of_moved();
     work.kept = static_cast<std::int64_t>(kept_.size());
-    for (const auto& [i, j] : kept_) {
-      const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+    // The kept pairs' exact tests on the run's threads, each pair's verdict
+    // in its own slot (1: a candidate, 2: a pair), gathered in order after.
+    verdict_.resize(kept_.size());
+    for_each_index(kept_.size(), [&](std::size_t k) {
+      const auto ui = static_cast<std::size_t>(kept_[k].first), uj = static_cast<std::size_t>(kept_[k].second);
+      char v = 0;
       if (growing) {
-        ++work.exact_tests;
-        if (!Ops::balls_overlap(b.grown[ui], b.grown_radii[ui], b.grown[uj], b.grown_radii[uj])) continue;
-        candidates.emplace_back(i, j);
+        if (!Ops::balls_overlap(b.grown[ui], b.grown_radii[ui], b.grown[uj], b.grown_radii[uj])) return void(verdict_[k] = 0);
+        v = 1;
       }
-      ++work.exact_tests;
-      if (Ops::balls_overlap(b.spheres[ui], b.radii[ui], b.spheres[uj], b.radii[uj])) pairs.emplace_back(i, j);
+      if (Ops::balls_overlap(b.spheres[ui], b.radii[ui], b.spheres[uj], b.radii[uj])) v |= 2;
+      verdict_[k] = v;
+    }, kGrainLight);
+    for (std::size_t k = 0; k < kept_.size(); ++k) {
+      const char v = verdict_[k];
+      work.exact_tests += growing ? 1 + (v & 1) : 1;
+      if (v & 1) candidates.push_back(kept_[k]);
+      if (v & 2) pairs.push_back(kept_[k]);
     }
     work.volume_tests = moving_.take_volume_tests() + fixed_.take_volume_tests();
     return work;
@@ -193,6 +236,15 @@ class TreeBroadphase {
   std::vector<char> is_static_;
   std::vector<char> moved_;  // this update's reinserted bodies
   std::vector<Pair> fresh_, merged_;
+  std::vector<char> verdict_;  // the kept pairs' exact tests (update)
+  // The moved bodies' queries (find_pairs_of_moved), a block of them per item.
+  std::vector<int> movers_;
+  struct Block {
+    std::vector<Pair> found;
+    std::vector<int> stack;
+    std::int64_t tests = 0;
+  };
+  std::vector<Block> blocks_;
 
   Tree& tree_of(std::size_t i) { return is_static_[i] ? fixed_ : moving_; }
 
@@ -203,22 +255,43 @@ class TreeBroadphase {
   // the fresh pairs and dropping repeats keeps it once. Both lists are
   // sorted and disjoint (every fresh pair has a moved body, no kept one
   // does), so a merge gives the sorted whole.
+  // The queries only read the trees: they run on the run's threads, a block
+  // of moved bodies each, every block with its own stack and list. The
+  // answer is a sorted set, so it does not depend on how the bodies were
+  // blocked or which thread ran a block.
   void find_pairs_of_moved() {
     std::erase_if(kept_, [&](const Pair& p) {
       return moved_[static_cast<std::size_t>(p.first)] || moved_[static_cast<std::size_t>(p.second)];
     });
+    movers_.clear();
+    for (std::size_t i = 0; i < leaf_.size(); ++i)
+      if (moved_[i]) movers_.push_back(static_cast<int>(i));
+    const std::size_t m = movers_.size(), grain = grain_of(kGrainQuery);
+    const std::size_t per = runs_parallel(m, grain) ? grain : std::max<std::size_t>(m, 1);
+    blocks_.resize((m + per - 1) / per);
+    for_each_index(blocks_.size(), [&](std::size_t k) {
+      Block& block = blocks_[k];
+      block.found.clear();
+      block.tests = 0;
+      for (std::size_t q = k * per; q < std::min(m, (k + 1) * per); ++q) {
+        const int me = movers_[q];
+        const auto i = static_cast<std::size_t>(me);
+        const auto add = [&](int j) {
+          if (j != me) block.found.emplace_back(std::min(me, j), std::max(me, j));
+        };
+        const auto& fat = tree_of(i).volume(leaf_[i]);
+        block.tests += moving_.query(fat, block.stack, add);
+        if (!is_static_[i]) block.tests += fixed_.query(fat, block.stack, add);
+      }
+    }, 1);
     fresh_.clear();
-    for (std::size_t i = 0; i < leaf_.size(); ++i) {
-      if (!moved_[i]) continue;
-      const int me = static_cast<int>(i);
-      const auto add = [&](int j) {
-        if (j != me) fresh_.emplace_back(std::min(me, j), std::max(me, j));
-      };
-      const auto& fat = tree_of(i).volume(leaf_[i]);
-      moving_.query(fat, add);
-      if (!is_static_[i]) fixed_.query(fat, add);
+    std::int64_t tests = 0;
+    for (const Block& block : blocks_) {
+      fresh_.insert(fresh_.end(), block.found.begin(), block.found.end());
+      tests += block.tests;
     }
-    std::sort(fresh_.begin(), fresh_.end());
+    moving_.count_volume_tests(tests);  // both trees' tests are summed by the caller
+    sort_pairs(fresh_, leaf_.size());
     fresh_.erase(std::unique(fresh_.begin(), fresh_.end()), fresh_.end());
     merged_.clear();
     std::merge(kept_.begin(), kept_.end(), fresh_.begin(), fresh_.end(), std::back_inserter(merged_));

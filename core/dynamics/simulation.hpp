@@ -187,11 +187,11 @@ struct Simulation {
         for (std::size_t b = k * n / count; b < (k + 1) * n / count; ++b) data.block_bodies[k].push_back(static_cast<int>(b));
       for (std::size_t k = 0; k < count; ++k) {
         data.blocks.push_back(std::make_unique<Subsystem<Bodies>>(m.bodies, data.block_bodies[k], stride, solver.spec()));
-        data.blocks.back()->solver.set_step_budget(0x1p53);  // the world's solver keeps the budget
+        data.blocks.back()->solver().set_step_budget(0x1p53);  // the world's solver keeps the budget
       }
     }
     solver.check_fixed_budget(t, t1, y);
-    const SolverStats before = data.blocks[0]->solver.stats();
+    const SolverStats before = data.blocks[0]->solver().stats();
     const auto caller = std::this_thread::get_id();
     std::vector<Profile> elsewhere(count);  // a worker's stage times: its wall time is the caller's wait
     for_each_index(
@@ -205,7 +205,7 @@ struct Simulation {
           std::copy(ys.begin(), ys.end(), first);
         },
         1);
-    const SolverStats& after = data.blocks[0]->solver.stats();
+    const SolverStats& after = data.blocks[0]->solver().stats();
     solver.add_steps(before, after);
     m.force_evaluations += after.derivative_evaluations - before.derivative_evaluations;
     t = t1;

@@ -4,6 +4,7 @@
 // box of core/collision/bounding_volume.hpp.
 #include "cga/bounding_volume.hpp"
 #include "core/collision/broadphase.hpp"
+#include "core/parallel.hpp"
 #include "traditional/bounding_volume.hpp"
 
 #include <gtest/gtest.h>
@@ -196,8 +197,10 @@ struct Methods {
 // (as the collision step grows them by how far a body can move): they equal
 // all pairs of the grown spheres. An update with nothing moved reinserts
 // nothing and tests no tree node: its candidates are exactly the kept pairs.
-TYPED_TEST(Broadphases, EveryMethodGivesAllPairsAsBodiesMove) {
-  using Ops = TypeParam;
+// The moving scene above: calls update(bodies, step) after each of the 300
+// moves, margins set at every other one.
+template <class F>
+void move_400_bodies(F&& update) {
   std::mt19937_64 g(21);
   std::uniform_real_distribution<double> u(0, 20), rad(0.2, 1.0), dir(-1, 1);
   const int n = 400;
@@ -209,8 +212,6 @@ TYPED_TEST(Broadphases, EveryMethodGivesAllPairsAsBodiesMove) {
     b.is_static.push_back(i % 20 == 0);
     v.push_back(b.is_static.back() ? Vec3::Zero() : Vec3(0.02 * Vec3(dir(g), dir(g), dir(g)).normalized()));
   }
-  Methods<Ops> m;
-  std::int64_t updates = 0, pairs = 0;
   for (int step = 0; step < 300; ++step) {
     for (int i = 0; i < n; ++i) {
       auto& c = b.centres[static_cast<std::size_t>(i)];
@@ -222,6 +223,18 @@ TYPED_TEST(Broadphases, EveryMethodGivesAllPairsAsBodiesMove) {
     b.margins.clear();
     if (step % 2)
       for (int i = 0; i < n; ++i) b.margins.push_back(v[static_cast<std::size_t>(i)].norm() * (1.5 + 0.5 * dir(g)));
+    update(b, step);
+  }
+}
+
+TYPED_TEST(Broadphases, EveryMethodGivesAllPairsAsBodiesMove) {
+  using Ops = TypeParam;
+  const int n = 400;
+  Methods<Ops> m;
+  std::int64_t updates = 0, pairs = 0;
+  Bodies b;
+  move_400_bodies([&](const Bodies& moved, int step) {
+    b = moved;
     const auto r = m.find(b, "step " + std::to_string(step));
     pairs += r[0].counters.pairs;
     for (std::size_t k = 1; k < r.size(); ++k) {
@@ -230,7 +243,7 @@ TYPED_TEST(Broadphases, EveryMethodGivesAllPairsAsBodiesMove) {
       if (step == 0) EXPECT_EQ(r[k].counters.tree_updates, n);
       else updates += r[k].counters.tree_updates;
     }
-  }
+  });
   EXPECT_GT(pairs, 300);
   EXPECT_LT(updates, 2 * 299 * n / 4) << "reinsertions, both trees";
   b.margins.clear();
@@ -243,6 +256,39 @@ TYPED_TEST(Broadphases, EveryMethodGivesAllPairsAsBodiesMove) {
   }
   std::printf("[ %s: %.1f reinsertions per update of %d bodies, %.1f pairs ]\n", Ops::name,
               static_cast<double>(updates) / (2 * 299), n, static_cast<double>(pairs) / 300);
+}
+
+// The trees' update on two threads (its containment tests, its moved bodies'
+// queries in blocks and its kept pairs' exact tests: core/parallel.hpp), with
+// every loop cut into chunks of at most 4 so that 400 bodies run every
+// parallel path: at every update of the moving scene each tree's pairs,
+// candidates and counters equal those of the same tree on one thread, and
+// the pairs equal all pairs'.
+TYPED_TEST(Broadphases, TreesGiveTheSameAnswerOnTwoThreads) {
+  using Ops = TypeParam;
+  struct Restore {
+    ~Restore() { set_threads(1), set_fine_grains(false); }
+  } restore;
+  for (const auto method : {BroadphaseMethod::aabb_tree, BroadphaseMethod::sphere_tree}) {
+    Broadphase<Ops> one(method), two(method);
+    std::int64_t moved = 0;
+    move_400_bodies([&](const Bodies& b, int step) {
+      set_threads(1), set_fine_grains(false);
+      const BroadphaseResult r1 = one.find(b.centres, b.radii, b.is_static, b.margins);
+      set_threads(2), set_fine_grains(true);
+      const BroadphaseResult r2 = two.find(b.centres, b.radii, b.is_static, b.margins);
+      const std::string where = std::string(name_of(method)) + " step " + std::to_string(step);
+      ASSERT_EQ(r2.pairs, r1.pairs) << where;
+      ASSERT_EQ(r2.candidates, r1.candidates) << where;
+      ASSERT_EQ(r2.pairs, all_pairs_in_frame<Ops>(b, two.frame(), false)) << where;
+      EXPECT_EQ(r2.counters.candidates, r1.counters.candidates) << where;
+      EXPECT_EQ(r2.counters.overlap_tests, r1.counters.overlap_tests) << where;
+      EXPECT_EQ(r2.counters.tree_updates, r1.counters.tree_updates) << where;
+      EXPECT_EQ(r2.counters.pairs_kept, r1.counters.pairs_kept) << where;
+      moved += r2.counters.tree_updates;
+    });
+    EXPECT_GT(moved, 300 * 8) << "the scene must move enough bodies per update to split the queries";
+  }
 }
 
 // Degenerate scenes, every method: equal spheres exactly touching (a 6³ grid
