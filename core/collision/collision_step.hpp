@@ -169,6 +169,12 @@ class CollisionStep {
       const int mover = setup.is_static[hit.a] ? hit.b : hit.a;
       hits[island_of[mover]].push_back(std::move(hit));
     }
+    // The pairs found apart, for the islands that are pushed out (a pair
+    // apart beyond reach links nothing and may lie between islands or none).
+    std::vector<std::vector<PairDepth>> gaps(searched() ? 0 : islands.size());
+    if (!searched())
+      for (const PairDepth& g : d.gaps)
+        if (const int k = island_of[setup.is_static[g.a] ? g.b : g.a]; k >= 0) gaps[static_cast<std::size_t>(k)].push_back(g);
     const double tol = setup.settings.penetration_tolerance;
     for (std::size_t k = 0; k < islands.size(); ++k) {
       const Island& is = islands[k];
@@ -186,7 +192,7 @@ class CollisionStep {
       }
       const bool fast = !fast_pairs.empty();
       if ((deepest <= tol || !searched()) && !fast) {
-        if (!searched() && deepest > tol) respond_and_push_out(is, d.candidates, hits[k], y, h, t1, profile);
+        if (!searched() && deepest > tol) respond_and_push_out(is, d.candidates, hits[k], gaps[k], y, h, t1, profile);
         else if (!hits[k].empty()) c_.respond(s_, m_, y, setup.all_bodies, hits[k], h, profile);
         continue;
       }
@@ -326,7 +332,10 @@ class CollisionStep {
         c_.respond(s_, a.model, ys, a.group, d.hits, accepted - t, profile);
         fail_if_nonfinite(a, ys, "response", accepted);
       }
-      if (push) push_out(a, among, pair_depths(d.hits, [](int k) { return k; }), yb, ys, accepted, profile);
+      if (push) {
+        const auto same = [](int k) { return k; };
+        push_out(a, among, pair_depths(d.hits, same), local_depths(d.gaps, same), yb, ys, accepted, profile);
+      }
       t = accepted;
     }
     a.scatter(ys, y);
@@ -344,6 +353,14 @@ class CollisionStep {
     std::vector<PairDepth> out;
     out.reserve(hits.size());
     for (const auto& hit : hits) out.push_back({local(hit.a), local(hit.b), hit.sat.depth});
+    return out;
+  }
+  // Pairs with depths in an island's numbering.
+  template <class Local>
+  static std::vector<PairDepth> local_depths(std::span<const PairDepth> depths, Local&& local) {
+    std::vector<PairDepth> out;
+    out.reserve(depths.size());
+    for (const auto& g : depths) out.push_back({local(g.a), local(g.b), g.depth});
     return out;
   }
 
@@ -393,20 +410,21 @@ class CollisionStep {
   // (core/collision/push_out_step.hpp) on the island alone. `hits`: the
   // island's, in the world's numbering.
   void respond_and_push_out(const Island& is, const std::vector<std::pair<int, int>>& candidates,
-                            std::span<const PairHit> hits, std::span<double> y, double h, double t1,
-                            Profile& profile) const {
+                            std::span<const PairHit> hits, std::span<const PairDepth> gaps, std::span<double> y,
+                            double h, double t1, Profile& profile) const {
     Subsystem<Bodies> a = subsystem_of(is);
     const std::vector<double> before = a.gather(y);
     c_.respond(s_, m_, y, c_.setup.all_bodies, hits, h, profile);
     std::vector<double> ys = a.gather(y);
     const Numbering local = numbering(is);
-    push_out(a, island_pairs(is, candidates, local), pair_depths(hits, local), before, ys, t1, profile);
+    push_out(a, island_pairs(is, candidates, local), pair_depths(hits, local), local_depths(gaps, local), before, ys,
+             t1, profile);
     a.scatter(ys, y);
   }
   void push_out(const Subsystem<Bodies>& a, const std::vector<std::pair<int, int>>& among,
-                std::span<const PairDepth> depths, const std::vector<double>& before, std::vector<double>& ys, double t,
-                Profile& profile) const {
-    PushOutStep<C>(c_, s_).run(a, among, depths, before, ys, profile,
+                std::span<const PairDepth> depths, std::span<const PairDepth> gaps, const std::vector<double>& before,
+                std::vector<double>& ys, double t, Profile& profile) const {
+    PushOutStep<C>(c_, s_).run(a, among, depths, gaps, before, ys, profile,
                                [&](const std::vector<double>& state) { fail_if_nonfinite(a, state, "response", t); });
   }
 

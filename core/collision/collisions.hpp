@@ -42,9 +42,19 @@
 
 namespace gacompare::core {
 
+// A pair of a group (its numbering) and its depth where last measured.
+struct PairDepth {
+  int a, b;
+  double depth;
+};
+
 struct Detection {
   double max_depth = -INFINITY;  // over the pairs in contact; −∞ when none
   std::vector<PairHit> hits;
+  // The pairs the narrowphase tested and found apart, with their depth: minus
+  // the gap along a separating axis, so at least minus their distance (the
+  // push-out's bounds start from it, core/collision/push_out_step.hpp).
+  std::vector<PairDepth> gaps;
   // With margins: the pairs whose grown spheres overlap (i < j, sorted), a
   // superset of the pairs the narrowphase tested; the islands' links.
   std::vector<std::pair<int, int>> candidates;

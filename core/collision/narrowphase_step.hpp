@@ -152,6 +152,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
     }
     if (!s.h.sat.intersect && s.h.features.empty()) {
       if (s.apart) d.apart.emplace_back(s.h.a, s.h.b);
+      d.gaps.push_back({s.h.a, s.h.b, s.h.sat.depth});
       continue;
     }
     d.max_depth = std::max(d.max_depth, s.h.sat.depth);
