@@ -28,8 +28,8 @@
 // deep response cost most of the run. What a pair's bound starts from:
 //   - in contact: its depth;
 //   - tested and found apart: its depth, minus the gap along the separating
-//     axis the narrowphase found (Detection::gaps), at most minus the
-//     distance;
+//     axis the narrowphase found (Detection::gaps); the distance is at least
+//     that gap;
 //   - not tested (its bounding spheres apart, or the moving body's sphere
 //     off the static body's box): r_a + r_b − |c_a − c_b| where below 0,
 //     else 0.
