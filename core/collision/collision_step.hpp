@@ -334,7 +334,7 @@ class CollisionStep {
       }
       if (push) {
         const auto same = [](int k) { return k; };
-        push_out(a, among, pair_depths(d.hits, same), local_depths(d.gaps, same), yb, ys, accepted, profile);
+        push_out(a, among, pair_depths(d.hits, same), pair_depths(d.gaps, same), yb, ys, accepted, profile);
       }
       t = accepted;
     }
@@ -346,21 +346,13 @@ class CollisionStep {
     return Subsystem<Bodies>(m_, is.bodies, Bodies::state_size(m_) / c_.setup.all_bodies.size(), c_.setup.solver);
   }
 
-  // Each hit's pair, in an island's numbering (`local` maps a hit's body
-  // index there), with its depth: what the push-out starts from.
-  template <class Local>
-  static std::vector<PairDepth> pair_depths(std::span<const PairHit> hits, Local&& local) {
+  // Each pair of a hit or gap list in an island's numbering (`local` maps a
+  // body's index there), with its depth: what the push-out starts from.
+  template <class List, class Local>
+  static std::vector<PairDepth> pair_depths(const List& list, Local&& local) {
     std::vector<PairDepth> out;
-    out.reserve(hits.size());
-    for (const auto& hit : hits) out.push_back({local(hit.a), local(hit.b), hit.sat.depth});
-    return out;
-  }
-  // Pairs with depths in an island's numbering.
-  template <class Local>
-  static std::vector<PairDepth> local_depths(std::span<const PairDepth> depths, Local&& local) {
-    std::vector<PairDepth> out;
-    out.reserve(depths.size());
-    for (const auto& g : depths) out.push_back({local(g.a), local(g.b), g.depth});
+    out.reserve(list.size());
+    for (const auto& x : list) out.push_back({local(x.a), local(x.b), measured_depth(x)});
     return out;
   }
 
@@ -417,7 +409,7 @@ class CollisionStep {
     c_.respond(s_, m_, y, c_.setup.all_bodies, hits, h, profile);
     std::vector<double> ys = a.gather(y);
     const Numbering local = numbering(is);
-    push_out(a, island_pairs(is, candidates, local), pair_depths(hits, local), local_depths(gaps, local), before, ys,
+    push_out(a, island_pairs(is, candidates, local), pair_depths(hits, local), pair_depths(gaps, local), before, ys,
              t1, profile);
     a.scatter(ys, y);
   }

@@ -47,6 +47,9 @@ struct PairDepth {
   int a, b;
   double depth;
 };
+// A pair's measured depth, whether a hit's or one found apart.
+inline double measured_depth(const PairDepth& p) { return p.depth; }
+inline double measured_depth(const PairHit& h) { return h.sat.depth; }
 
 struct Detection {
   double max_depth = -INFINITY;  // over the pairs in contact; −∞ when none

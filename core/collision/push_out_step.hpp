@@ -44,6 +44,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -83,16 +84,17 @@ class PushOutStep {
       const auto at = std::lower_bound(among.begin(), among.end(), std::pair(std::min(i, j), std::max(i, j)));
       return at != among.end() && *at == std::pair(std::min(i, j), std::max(i, j)) ? at - among.begin() : -1;
     };
-    std::vector<double> bound(among.size());  // each pair's depth at most
-    untested(a, before, among, bound);
-    const auto measured = [&](std::span<const PairDepth> list) {
-      for (const auto& g : list)
-        if (const auto k = index(g.a, g.b); k >= 0) bound[static_cast<std::size_t>(k)] = depth_bound(g.depth);
+    // Each pair's depth at most; NaN until measured, then the pairs left
+    // unmeasured get their bounding spheres' bound (apart_by_spheres).
+    std::vector<double> bound(among.size(), kUnmeasured);
+    const auto measure = [&](const auto& list) {
+      for (const auto& x : list)
+        if (const auto k = index(x.a, x.b); k >= 0) bound[static_cast<std::size_t>(k)] = depth_bound(measured_depth(x));
     };
-    measured(gaps), measured(hits);
+    measure(gaps), measure(hits);
+    apart_by_spheres(a, before, among, bound);
     raise(a, bound, among, before, ys);
     Pairs pairs;
-    std::vector<double> fresh;
     for (int pass = 0;; ++pass) {
       if (on_pass) on_pass(pass, among, bound, ys);
       pairs.clear();
@@ -101,11 +103,9 @@ class PushOutStep {
       if (pairs.empty()) return;
       const Detection d = c_.detect_among(s_, a.model, ys, a.group, pairs, profile);
       ++s_.counters.push_out_detections;
-      untested(a, ys, pairs, fresh);
-      for (std::size_t q = 0; q < pairs.size(); ++q)
-        bound[static_cast<std::size_t>(index(pairs[q].first, pairs[q].second))] = fresh[q];
-      for (const auto& g : d.gaps) bound[static_cast<std::size_t>(index(g.a, g.b))] = depth_bound(g.depth);
-      for (const auto& h : d.hits) bound[static_cast<std::size_t>(index(h.a, h.b))] = h.sat.depth;
+      for (const auto& [i, j] : pairs) bound[static_cast<std::size_t>(index(i, j))] = kUnmeasured;
+      measure(d.gaps), measure(d.hits);
+      apart_by_spheres(a, ys, among, bound);
       if (!(d.max_depth > tol)) return;
       if (pass == kPushOutPasses) return ++s_.counters.push_out_left_deep, void();
       const std::vector<double> pushed = ys;
@@ -116,33 +116,37 @@ class PushOutStep {
   }
 
  private:
+  static constexpr double kUnmeasured = std::numeric_limits<double>::quiet_NaN();
+
   // A measured depth as a bound: a non-finite one (none the narrowphase
   // gives a pair it tested) bounds nothing, and counts as 0, the bound of a
   // pair known to be apart.
   static double depth_bound(double depth) { return std::isfinite(depth) ? depth : 0.0; }
 
-  // The bounds of pairs found apart without a narrowphase test at state y:
-  // r_a + r_b − |c_a − c_b| (their bounding spheres' gap), or 0 where that
-  // is not below 0 (the moving body's sphere off a static body's box). Each
-  // body's centre is posed once where the pairs name most of the island's
-  // bodies (all its pairs), else per pair.
-  void untested(const Subsystem<Bodies>& a, const std::vector<double>& y, const Pairs& pairs,
-                std::vector<double>& out) const {
+  // The bounds of the pairs still unmeasured (NaN) at state y: the detection
+  // found them apart without a narrowphase test, so r_a + r_b − |c_a − c_b|
+  // (their bounding spheres' gap), or 0 where that is not below 0 (the
+  // moving body's sphere off a static body's box). Each body's centre is
+  // posed once where those pairs are as many as the island's bodies, else
+  // per pair.
+  void apart_by_spheres(const Subsystem<Bodies>& a, const std::vector<double>& y, const Pairs& among,
+                        std::vector<double>& bound) const {
     const auto& setup = c_.setup;
     const auto centre = [&](int k) {
       return Bodies::pose(a.model, y, static_cast<std::size_t>(k)).apply(setup.sphere_centre[world(a, k)]);
     };
+    const auto left = static_cast<std::size_t>(std::ranges::count_if(bound, [](double v) { return std::isnan(v); }));
     std::vector<Vec3> all;
-    if (pairs.size() >= a.group.size())
+    if (left >= a.group.size())
       for (std::size_t k = 0; k < a.group.size(); ++k) all.push_back(centre(static_cast<int>(k)));
-    out.resize(pairs.size());
-    for (std::size_t q = 0; q < pairs.size(); ++q) {
-      const auto [i, j] = pairs[q];
+    for (std::size_t q = 0; q < among.size() && left > 0; ++q) {
+      if (!std::isnan(bound[q])) continue;
+      const auto [i, j] = among[q];
       const Vec3 ci = all.empty() ? centre(i) : all[static_cast<std::size_t>(i)];
       const Vec3 cj = all.empty() ? centre(j) : all[static_cast<std::size_t>(j)];
       // Rounding of the centres and the sum, ~1e-15 of them, errs towards testing.
       const double r = setup.sphere_radius[world(a, i)] + setup.sphere_radius[world(a, j)];
-      out[q] = std::min(0.0, r - (ci - cj).norm() + 1e-12 * (r + ci.norm() + cj.norm()));
+      bound[q] = std::min(0.0, r - (ci - cj).norm() + 1e-12 * (r + ci.norm() + cj.norm()));
     }
   }
   static std::size_t world(const Subsystem<Bodies>& a, int k) {
