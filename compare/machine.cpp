@@ -3,9 +3,12 @@
 #include "core/error.hpp"
 
 #include <chrono>
+#include <cstring>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <dlfcn.h>
+#include <gnu/libc-version.h>
 #include <sched.h>
 #include <stdlib.h>
 #include <thread>
@@ -23,6 +26,22 @@
 namespace gacompare::compare {
 
 std::string tool_version() { return GACOMPARE_VERSION; }
+
+namespace {
+// Asked of the running process, not of the build: the executables link
+// tcmalloc (CMakeLists.txt), the tests and sanitized builds do not.
+std::string allocator() {
+  using Version = const char* (*)(int*, int*, const char**);
+  if (void* symbol = dlsym(RTLD_DEFAULT, "tc_version")) {
+    Version version;
+    std::memcpy(&version, &symbol, sizeof version);
+    int major = 0, minor = 0;
+    const char* patch = nullptr;
+    return std::string("tcmalloc (") + version(&major, &minor, &patch) + ")";
+  }
+  return std::string("system (glibc ") + gnu_get_libc_version() + ")";
+}
+}  // namespace
 
 MachineInfo machine_info() {
   MachineInfo m;
@@ -50,6 +69,7 @@ MachineInfo machine_info() {
   m.date = buf;
   m.build_type = GACOMPARE_BUILD_TYPE;
   m.flags = GACOMPARE_CXX_FLAGS;
+  m.allocator = allocator();
   m.logical_cpus = static_cast<int>(std::thread::hardware_concurrency());
   cpu_set_t set;
   CPU_ZERO(&set);

@@ -24,6 +24,7 @@ struct MachineInfo {
   // From here on with default initialisers, so MachineInfo{cpu, compiler, date,
   // build_type} stays free of missing-initialiser warnings.
   std::string flags{};   // the C++ flags of this build (CMAKE_CXX_FLAGS and the build type's)
+  std::string allocator{};  // the malloc this process runs on: "tcmalloc (gperftools 2.10)" or "system (glibc 2.36)"
   int logical_cpus = 0;  // online (std::thread::hardware_concurrency), 0 when unknown
   int usable_cpus = 0;   // in this process's affinity mask (what a run may use), 0 when unknown
   // The 1, 5 and 15 minute load averages (getloadavg) when this record was

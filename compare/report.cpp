@@ -96,7 +96,8 @@ std::string header(const MachineInfo& m, int repeats, std::span<const BackendPai
   std::vector<std::string> ratios;
   for (const BackendPair p : pairs) ratios.push_back(std::string(p.numerator) + "/" + std::string(p.denominator));
   std::ostringstream o;
-  o << "gacompare " << tool_version() << " (" << m.build_type << ", " << m.compiler << ", commit "
+  o << "gacompare " << tool_version() << " (" << m.build_type << ", " << m.compiler << ", "
+    << (m.allocator.empty() ? "allocator unknown" : m.allocator) << ", commit "
     << m.build.commit.substr(0, 12) << (m.build.dirty == "yes" ? " with uncommitted changes" : m.build.dirty == "no" ? "" : ", tree state unknown")
     << ") on " << m.cpu << " (" << m.usable_cpus << " CPUs usable, load average " << fmt("%.2f", m.load_average[0])
     << " at the start), " << m.date << ". Times are medians over " << repeats

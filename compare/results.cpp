@@ -154,6 +154,7 @@ nlohmann::ordered_json machine_json(const MachineInfo& m) {
           {"compiler", m.compiler},
           {"build_type", m.build_type},
           {"flags", m.flags},
+          {"allocator", m.allocator},
           {"git", {{"commit", m.build.commit}, {"dirty", dirty}}},
           {"date", m.date}};
 }

@@ -15,6 +15,7 @@ packages=(
   libcli11-dev             # command line
   libssl-dev               # SHA-256 of scene files (libcrypto)
   libqhull-dev libtinyobjloader-dev  # convex hulls (Qhull, reentrant C API), OBJ meshes
+  libgoogle-perftools-dev  # tcmalloc: the executables' allocator (CMakeLists.txt says why)
   libboost-dev             # Boost.Odeint: the peer our solvers are checked and timed against
   python3                  # scripts/results.py and the tools it runs (docs/results/)
   gnuplot-nox              # plots: work-precision diagrams, report figures

@@ -38,8 +38,11 @@ TEST(Cli, CompareWritesResultsAndReportForEveryBackend) {
   EXPECT_FALSE(j["tool"]["version"].get<std::string>().empty());
   EXPECT_EQ(j["scene"]["name"], "projectile_linear_drag");
   EXPECT_EQ(j["scene"]["sha256"].get<std::string>().size(), 64u);
-  for (const char* k : {"cpu", "compiler", "date", "flags", "build_type"})
+  for (const char* k : {"cpu", "compiler", "date", "flags", "build_type", "allocator"})
     EXPECT_FALSE(j["machine"][k].get<std::string>().empty()) << k;
+  // The allocator the binary runs on, as its build linked it (CMakeLists.txt).
+  EXPECT_TRUE(j["machine"]["allocator"].get<std::string>().starts_with(std::string(GACOMPARE_ALLOCATOR_NAME) + " ("))
+      << j["machine"]["allocator"];
   EXPECT_GE(j["machine"]["logical_cpus"].get<int>(), 1);
   EXPECT_GE(j["machine"]["usable_cpus"].get<int>(), 1);
   EXPECT_LE(j["machine"]["usable_cpus"].get<int>(), j["machine"]["logical_cpus"].get<int>());
