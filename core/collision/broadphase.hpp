@@ -136,9 +136,11 @@ template <SphereTreeOps Ops>
 class Broadphase {
  public:
   using Sphere = typename Ops::Sphere;
-  // margin: the trees' fat margin relative to each radius (the benchmarks vary it).
-  explicit Broadphase(BroadphaseMethod method = Collisions{}.broadphase, double margin = kFatMargin)
-      : method_(method), aabb_(margin), spheres_tree_(margin) {}
+  // margin: the trees' fat margin relative to each radius (the benchmarks vary
+  // it); look_ahead: the AABB tree's reach along each motion (kLookAhead).
+  explicit Broadphase(BroadphaseMethod method = Collisions{}.broadphase, double margin = kFatMargin,
+                      double look_ahead = kLookAhead)
+      : method_(method), aabb_(margin, look_ahead), spheres_tree_(margin) {}
 
   // The bodies' bounding spheres by centre (world coordinates) and radius;
   // margins empty, or one per body (≥ 0).

@@ -16,7 +16,8 @@
 // Each detection (update):
 //   1. every body's tight volume (its bounding sphere, or the box around it) is
 //      checked against the fat volume its leaf holds (the tight one grown by
-//      kFatMargin of its radius); only a body that left it is reinserted;
+//      kFatMargin of its radius, a box also stretched along the body's last
+//      displacement: kLookAhead); only a body that left it is reinserted;
 //   2. the pairs of reinserted bodies are dropped and found again by querying
 //      the trees with their new fat volumes (a moving body: both trees; a
 //      static one: the moving tree only, so two static bodies are never a
@@ -54,6 +55,17 @@ namespace gacompare::core {
 // fast as its reinsertions fall; a denser scene keeps more pairs per margin,
 // so one margin for both trees (bench/broadphase_bench.cpp margin<M>_coherent_1000).
 inline constexpr double kFatMargin = 0.4;
+
+// How far ahead a reinserted box reaches: the body's displacement since the
+// last update, this many times over (AabbVolume only; a sphere cannot be
+// stretched one way). A body that left its box is usually on its way
+// somewhere, and a box that reaches along its path holds it for several
+// updates, as Box2D v2 (b2_aabbMultiplier) and Bullet's predicted boxes do.
+// Only the kept pairs grow (the exact test removes them), never the pairs.
+// On the 10,000-body box without a search (one run each, two threads): 0,
+// 4, 8, 16 updates gave 740, 518, 407, 293 thousand reinsertions, 136, 140,
+// 144, 152 million kept pairs, and 5.8, 5.2, 4.8, 4.6 s of broadphase.
+inline constexpr double kLookAhead = 8;
 
 // Moved bodies per block of tree queries on the run's threads: a query of a
 // 10,000-body tree tests some hundred volumes, about a microsecond, so a
@@ -107,6 +119,8 @@ struct AabbVolume {
     return {centre.array() - radius, centre.array() + radius};
   }
   static Aabb grown(const Aabb& a, double by) { return {a.min.array() - by, a.max.array() + by}; }
+  // The box and the box moved by d: where the body is headed.
+  static Aabb swept(const Aabb& a, const Vec3& d) { return {a.min.cwiseMin(a.min + d), a.max.cwiseMax(a.max + d)}; }
 };
 
 // The backend's spheres themselves; the cost is ρ².
@@ -147,12 +161,13 @@ template <class V, BoundingSphereOps Ops>
 class TreeBroadphase {
  public:
   using Sphere = typename Ops::Sphere;
-  explicit TreeBroadphase(double margin = kFatMargin) : margin_(margin) {}
+  explicit TreeBroadphase(double margin = kFatMargin, double look_ahead = kLookAhead)
+      : margin_(margin), look_ahead_(look_ahead) {}
 
   // Forgets everything: the next update inserts every body afresh.
   void clear() {
     moving_.clear(), fixed_.clear();
-    leaf_.clear(), kept_.clear(), is_static_.clear();
+    leaf_.clear(), kept_.clear(), is_static_.clear(), last_.clear();
   }
 
   // Appends the pairs whose spheres overlap to `pairs` and, with margins, the
@@ -189,14 +204,18 @@ class TreeBroadphase {
       moved_[i] = leaf_[i] == kNull || !V::contains(tree_of(i).volume(leaf_[i]), tight(i));
     }, kGrainLight);
     bool any = false;
+    if (last_.size() != n) last_.assign(b.centres.begin(), b.centres.end());
     for (std::size_t i = 0; i < n; ++i) {
       if (!moved_[i]) continue;
       Tree& tree = tree_of(i);
       if (leaf_[i] != kNull) tree.remove(leaf_[i]);
-      leaf_[i] = tree.insert(V::grown(tight(i), margin_ * b.radii[i]), static_cast<int>(i));
+      auto fat = V::grown(tight(i), margin_ * b.radii[i]);
+      if constexpr (requires { V::swept(fat, Vec3()); }) fat = V::swept(fat, look_ahead_ * (b.centres[i] - last_[i]));
+      leaf_[i] = tree.insert(fat, static_cast<int>(i));
       any = true;
       ++work.reinserted;
     }
+    std::copy(b.centres.begin(), b.centres.end(), last_.begin());
     if (any) find_pairs_of_moved();
     work.kept = static_cast<std::int64_t>(kept_.size());
     // The kept pairs' exact tests on the run's threads, each pair's verdict
@@ -229,12 +248,14 @@ class TreeBroadphase {
   using Tree = DynamicTree<V>;
   using Pair = std::pair<int, int>;
   static constexpr int kNull = Tree::kNull;
-  double margin_;  // relative to each body's radius
+  double margin_;      // relative to each body's radius
+  double look_ahead_;  // kLookAhead
   Tree moving_, fixed_;
   std::vector<int> leaf_;    // body → its leaf in its tree
   std::vector<Pair> kept_;   // the pairs whose fat volumes overlap, i < j, sorted
   std::vector<char> is_static_;
   std::vector<char> moved_;  // this update's reinserted bodies
+  std::vector<Vec3> last_;   // each centre at the last update
   std::vector<Pair> fresh_, merged_;
   std::vector<char> verdict_;  // the kept pairs' exact tests (update)
   // The moved bodies' queries (find_pairs_of_moved), a block of them per item.
