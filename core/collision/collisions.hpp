@@ -107,6 +107,7 @@ struct CollisionState {
   // tens of thousands of slots (a third of a kilobyte each) written to fresh
   // memory at every detection were a tenth of the serial part of its run.
   std::vector<NarrowSlot> slots;
+  std::vector<std::pair<int, int>> tests;  // a detection's pairs to test, in slot order
 };
 
 // The collider works on a group of bodies: the whole world (the world's model

@@ -27,7 +27,10 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   // Each pair gets a slot of its own, so that the pairs can be tested on the
   // run's threads and come out the same for any number of them
   // (core/parallel.hpp):
-  //   1. on this thread, the slots (a < b in the world);
+  //   1. on this thread, the pairs to test (a < b in the world); their
+  //      slots are written on the run's threads, in step 2 (a 10,000-body
+  //      world's slots are megabytes, and writing them on one thread was a
+  //      measurable share of the run's own thread);
   //   2. in parallel, each pair's own lookups: its kept contacts, measured
   //      again where its relative pose has stayed within their bound
   //      (core/collision/kept_contacts.hpp: those pairs are not tested, and
@@ -44,17 +47,19 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   // 10,000 bodies' pairs are megabytes): on one thread, with each pair's
   // axis looked up twice, they were a seventh of the 10,000-body box's run.
   using Slot = NarrowSlot;
-  std::vector<Slot>& slots = state.slots;
-  slots.clear();
-  slots.reserve(pairs.size());
+  std::vector<std::pair<int, int>>& tests = state.tests;
+  tests.clear();
   if (reuse && state.shapes.size() != setup.meshes.size())
     state.shapes.resize(setup.meshes.size()), state.placed_in.assign(setup.meshes.size(), 0);
   for (const auto& pair : pairs) {
     int i = pair.first, j = pair.second;
     if (setup.is_static[group[i]] && setup.is_static[group[j]]) continue;
     if (group[i] > group[j]) std::swap(i, j);  // a < b in the world: every group sees a pair the same way
-    slots.push_back({PairHit{i, j, {}, {}}, {}, {}});
+    tests.emplace_back(i, j);
   }
+  // The slots kept between detections (a slot beyond this detection's pairs is stale).
+  if (state.slots.size() < tests.size()) state.slots.resize(tests.size());
+  const std::span<Slot> slots(state.slots.data(), tests.size());
   state.counters.narrowphase_pairs += slots.size();
   if (group.data() != setup.all_bodies.data()) state.counters.island_narrowphase_pairs += slots.size();
   // PairMemory::find on several threads at once: each writes only its own pair's entry.
@@ -62,6 +67,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
       slots.size(),
       [&](std::size_t u) {
         Slot& s = slots[u];
+        s = Slot{PairHit{tests[u].first, tests[u].second, {}, {}}, {}, {}};
         const int wa = group[s.h.a], wb = group[s.h.b];
         s.kept_entry = keep ? state.kept.find(wa, wb) : nullptr;
         if (s.kept_entry && collision::refresh(*s.kept_entry, *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a],

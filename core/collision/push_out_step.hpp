@@ -80,9 +80,29 @@ class PushOutStep {
            std::span<const PairDepth> gaps, const std::vector<double>& before, std::vector<double>& ys,
            Profile& profile, const std::function<void(const std::vector<double>&)>& check) const {
     const double tol = c_.setup.settings.penetration_tolerance;
-    const auto index = [&](int i, int j) {
-      const auto at = std::lower_bound(among.begin(), among.end(), std::pair(std::min(i, j), std::max(i, j)));
-      return at != among.end() && *at == std::pair(std::min(i, j), std::max(i, j)) ? at - among.begin() : -1;
+    // A pair's place in `among`, or −1. The lists looked up come in pair
+    // order (a detection's hits and gaps follow its pairs), so each search
+    // gallops on from the last place found: a step or two per pair, where a
+    // binary search over a pile's 29,000 pairs missed the cache at each of
+    // its fifteen steps. Any order gives the same places.
+    std::size_t last = 0;
+    const auto index = [&](int i, int j) -> long {
+      const std::pair key(std::min(i, j), std::max(i, j));
+      std::size_t lo = 0, hi = among.size();
+      if (last < among.size() && !(key < among[last])) {
+        lo = last;
+        for (std::size_t step = 1; lo + step < among.size(); step *= 2) {
+          if (key < among[lo + step]) {
+            hi = lo + step;
+            break;
+          }
+          lo += step;
+        }
+      }
+      const auto at = std::lower_bound(among.begin() + static_cast<long>(lo), among.begin() + static_cast<long>(hi), key);
+      if (at == among.end() || *at != key) return -1;
+      last = static_cast<std::size_t>(at - among.begin());
+      return static_cast<long>(last);
     };
     // Each pair's depth at most; NaN until measured, then the pairs left
     // unmeasured get their bounding spheres' bound (apart_by_spheres).
