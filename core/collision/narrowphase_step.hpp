@@ -93,21 +93,18 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
       if (state.placed_in[group[k]] != state.detection) state.placed_in[group[k]] = state.detection, to_place.push_back(k);
   }
   state.counters.narrowphase_shapes += to_place.size() + (reuse ? 0 : 2 * tested);
-  // A shape builds its edges (and, for the report's detector, its prepared
-  // triangles) on first use; on more than one thread several pairs may ask
-  // at once, so they are built here, with the placing, instead (the same
-  // numbers either way: only when they are built changes). Only then: built
-  // up front, every shape's edges cost about a tenth of the narrowphase on
-  // the 1,000-body box, where most pairs are separated by a face.
+  // A shape builds its edges on first use, safely from several threads
+  // (Shape::edges). Its prepared triangles, which only the report's detector
+  // reads, are built here with the placing when pairs are tested on several
+  // threads (the same numbers either way: only when they are built changes).
   const bool shared = runs_parallel(slots.size(), kGrainPair);
   const bool report = method == collision::Method::sat_then_report;
   for_each_index(to_place.size(), [&](std::size_t u) {
     const int k = to_place[u];
     auto& shape = state.shapes[group[k]];
     shape.place({setup.meshes[group[k]].get(), pose[k]});
-    if (!shared || shape.is_sphere() || shape.is_capsule()) return;  // a round shape has neither
-    shape.edges();
-    if (report && !setup.meshes[group[k]]->triangles().empty()) shape.triangle(0);
+    if (shared && report && !shape.is_sphere() && !shape.is_capsule() && !setup.meshes[group[k]]->triangles().empty())
+      shape.triangle(0);
   }, kGrainPlace);
   // Whether a tested pair's contacts are kept (collision::keep, into its entry).
   const auto keeps = [&](const Slot& s) { return keep && !s.kept && s.choice.made && !s.h.features.empty(); };

@@ -274,6 +274,31 @@ Mesh Mesh::from_triangles(std::string name, std::vector<Vec3> vertices, std::vec
   return m;
 }
 
+namespace {
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0; }
+}  // namespace
+
+// Bit for bit, not ==: -0 and 0 compare equal but need not give the same
+// arithmetic downstream. Planes are compared as two fields each, not as raw
+// bytes, so that padding never enters.
+bool Mesh::identical(const Mesh& o) const {
+  if (name_ != o.name_ || !same_bits(vertices_, o.vertices_) || !same_bits(triangles_, o.triangles_) ||
+      !same_bits(normals_, o.normals_) || !same_bits(triangle_plane_, o.triangle_plane_) ||
+      planes_.size() != o.planes_.size() || convex_ != o.convex_ || capsule_ != o.capsule_ ||
+      !same_bits(size_, o.size_) || !same_bits(sphere_radius_, o.sphere_radius_) ||
+      !same_bits(sphere_centre_, o.sphere_centre_) || !same_bits(capsule_half_axis_, o.capsule_half_axis_))
+    return false;
+  for (std::size_t k = 0; k < planes_.size(); ++k)
+    if (!same_bits(planes_[k].normal, o.planes_[k].normal) || !same_bits(planes_[k].offset, o.planes_[k].offset))
+      return false;
+  return true;
+}
+
 // A rigid motion keeps everything a valid mesh is, so nothing is checked or
 // merged again (that was the cost of a large hull, built once and moved to its
 // centre of mass). Normals and planes are computed from the moved vertices as

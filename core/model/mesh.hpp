@@ -79,6 +79,11 @@ class Mesh {
   bool corners_only() const { return corners_only_; }
   double size() const { return size_; }  // bounding-box diagonal: the length scale of tolerances
 
+  // Whether `other` is this mesh to the last bit (vertices, triangles,
+  // planes, name and round shape; the rest is derived from these): bodies of
+  // one shape then share one Mesh (core/model/model.cpp).
+  bool identical(const Mesh& other) const;
+
   // The same solid moved rigidly: x -> R x + t (R a rotation).
   Mesh transformed(const Eigen::Matrix3d& rotation, const Vec3& translation) const;
 

@@ -11,6 +11,10 @@
 //     the box's closed forms;
 //   - the principal frame: axes diag(moments) axesᵀ = inertia, for a box
 //     given as a turned hull;
+//   - bodies of one shape share one mesh, and only they: the same box at two
+//     masses shares, a box of another size, a hull of the same box (another
+//     name) and a box moved off its centre (a hull whose centre of mass moves
+//     its vertices) do not; Mesh::identical compares to the last bit;
 //   - materials and convexity as the collisions effect reads them, and the
 //     refusal of a non-convex body at its JSON path by load_compiled.
 #include "core/model/model.hpp"
@@ -50,6 +54,34 @@ TEST(Model, MassPropertiesMatchClosedForms) {
   // The same box as a hull 1 km away: the same inertia, about its own centre (the
   // reference point is the vertex mean, so 1 km costs ~ 1e3² ulps at most: 1e-9).
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(props[2].inertia(k, k), box[k], 1e-9 * box[k]);
+}
+
+TEST(Model, BodiesOfOneShapeShareOneMesh) {
+  const Scene s = parse_scene(R"({"name": "p", "duration": 1, "output": {"every": 1}, "solver": {"method": "rk4"},
+    "bodies": [{"name": "a", "shape": {"box": [1, 2, 3]}, "mass": 6.0, "position": [0, 0, 0]},
+               {"name": "b", "shape": {"box": [1, 2, 3]}, "density": 2.0, "position": [5, 0, 0]},
+               {"name": "c", "shape": {"box": [1, 2, 3.0000000000000004]}, "mass": 6.0, "position": [0, 5, 0]},
+               {"name": "d", "shape": {"hull": [[0, 0, 0], [1, 0, 0], [0, 2, 0], [0, 0, 3],
+                                                [1, 2, 0], [1, 0, 3], [0, 2, 3], [1, 2, 3]]},
+                "mass": 6.0, "position": [0, 0, 5]},
+               {"name": "e", "shape": {"hull": [[0, 0, 0], [1, 0, 0], [0, 2, 0], [0, 0, 3],
+                                                [1, 2, 0], [1, 0, 3], [0, 2, 3], [1, 2, 3]]},
+                "mass": 1.0, "position": [0, 5, 5]},
+               {"name": "f", "shape": {"tetrahedron": 1.0}, "mass": 1.0, "position": [5, 5, 5]}]})",
+                              "p.json");
+  const Model model = compile(s);
+  ASSERT_EQ(model.bodies.size(), 6u);
+  const auto& b = model.bodies;
+  EXPECT_EQ(b[0].mesh, b[1].mesh);  // the same box, another mass
+  EXPECT_NE(b[0].mesh, b[2].mesh);  // one ulp longer
+  EXPECT_NE(b[0].mesh, b[3].mesh);  // the same solid, but a hull: another name
+  EXPECT_EQ(b[3].mesh, b[4].mesh);  // the same hull
+  EXPECT_NE(b[0].mesh, b[5].mesh);
+  // What sharing decides on: a copy is identical, a moved copy is not.
+  const Mesh box = make_box({1, 2, 3});
+  EXPECT_TRUE(box.identical(make_box({1, 2, 3})));
+  EXPECT_FALSE(box.identical(box.transformed(Eigen::Matrix3d::Identity(), Vec3(0, 0, std::ldexp(1.0, -52)))));  // one ulp of 1.5
+  EXPECT_FALSE(box.identical(make_box({1, 2, 3.0000000000000004})));
 }
 
 // The far hull's mesh is moved to its centre of mass, (1000.5, 1, 1.5):
