@@ -15,9 +15,11 @@
 // exception thrown by an item is rethrown in the caller (the first one;
 // items after it may still run). A loop of fewer than two chunks runs on the
 // caller alone: waking a worker costs more than a few items save.
+#include <algorithm>
 #include <cstddef>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace gacompare::core {
 
@@ -68,6 +70,35 @@ void for_each_index(std::size_t n, F&& f, std::size_t grain = 32) {
     F& g = *static_cast<std::remove_reference_t<F>*>(context);
     for (std::size_t k = begin; k < end; ++k) g(k);
   });
+}
+
+// Appends item(k) to `out` for every k in [0, n) with pick(k), in index
+// order: the same list for any number of threads. On several, each block of
+// `grain` items counts its picks, a running sum of the counts (on this
+// thread) gives each block its place, and the blocks write there. pick runs
+// twice per item, so it should be a lookup, not a test.
+template <class T, class Pick, class Item>
+void append_picked(std::vector<T>& out, std::size_t n, Pick&& pick, Item&& item, std::size_t grain) {
+  if (!runs_parallel(n, grain)) {
+    for (std::size_t k = 0; k < n; ++k)
+      if (pick(k)) out.push_back(item(k));
+    return;
+  }
+  const std::size_t g = grain_of(grain), blocks = (n + g - 1) / g;
+  std::vector<std::size_t> at(blocks + 1, 0);
+  for_each_index(blocks, [&](std::size_t b) {
+    std::size_t c = 0;
+    for (std::size_t k = b * g; k < std::min(n, (b + 1) * g); ++k) c += pick(k) ? 1 : 0;
+    at[b + 1] = c;
+  }, 1);
+  at[0] = out.size();
+  for (std::size_t b = 0; b < blocks; ++b) at[b + 1] += at[b];
+  out.resize(at[blocks]);
+  for_each_index(blocks, [&](std::size_t b) {
+    std::size_t w = at[b];
+    for (std::size_t k = b * g; k < std::min(n, (b + 1) * g); ++k)
+      if (pick(k)) out[w++] = item(k);
+  }, 1);
 }
 
 }  // namespace gacompare::core

@@ -8,6 +8,9 @@
 #include "core/collision/collisions.hpp"
 #include "core/parallel.hpp"
 
+#include <atomic>
+#include <cstdint>
+
 namespace gacompare::core {
 
 template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
@@ -34,15 +37,15 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   //   2. in parallel, each pair's own lookups: its kept contacts, measured
   //      again where its relative pose has stayed within their bound
   //      (core/collision/kept_contacts.hpp: those pairs are not tested, and
-  //      their bodies not placed for them), and its remembered axis;
-  //   3. on this thread, the bodies to place; then, in parallel, each placed
-  //      once;
-  //   4. in parallel, the tests, each writing back its pair's remembered axis
+  //      their bodies not placed for them), and its remembered axis; and each
+  //      body a tested pair needs placed, once, by the pair that claims it
+  //      first (an atomic exchange of the detection it was placed in);
+  //   3. in parallel, the tests, each writing back its pair's remembered axis
   //      and kept contacts where its pair had them;
-  //   5. on this thread, in pair order, the pairs new to the memories, the
+  //   4. on this thread, in pair order, the pairs new to the memories, the
   //      hits, the links apart and the counters.
   // The memories are only read and rewritten in place (PairMemory::find)
-  // until step 5 adds the new pairs, so the entries found in step 2 stay
+  // until step 4 adds the new pairs, so the entries found in step 2 stay
   // where they are. Their lookups miss the cache at scale (the tables of
   // 10,000 bodies' pairs are megabytes): on one thread, with each pair's
   // axis looked up twice, they were a seventh of the 10,000-body box's run.
@@ -63,6 +66,8 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   state.counters.narrowphase_pairs += slots.size();
   if (group.data() != setup.all_bodies.data()) state.counters.island_narrowphase_pairs += slots.size();
   // PairMemory::find on several threads at once: each writes only its own pair's entry.
+  const bool shared = runs_parallel(slots.size(), kGrainPair);
+  const bool report = method == collision::Method::sat_then_report;
   for_each_index(
       slots.size(),
       [&](std::size_t u) {
@@ -81,31 +86,24 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
         if (!reuse) return;
         s.hint_entry = state.hints.find(wa, wb);
         if (s.hint_entry) s.hint = *s.hint_entry;
+        // Each body a tested pair needs is placed once in this detection, by
+        // the first pair to claim it. Which pair, or thread, that is changes
+        // nothing: a shape is a function of its mesh and pose alone.
+        for (const int k : {s.h.a, s.h.b}) {
+          const int w = group[k];
+          if (std::atomic_ref<std::uint64_t>(state.placed_in[w]).exchange(state.detection, std::memory_order_relaxed) ==
+              state.detection)
+            continue;
+          ++s.shapes;
+          auto& shape = state.shapes[w];
+          shape.place({setup.meshes[w].get(), pose[k]});
+          // The report's detector reads prepared triangles, built on first
+          // use by a thread that may not be alone: built here instead.
+          if (shared && report && !shape.is_sphere() && !shape.is_capsule() &&
+              !setup.meshes[w]->triangles().empty()) shape.triangle(0);
+        }
       },
       kGrainPair);
-  std::vector<int> to_place;  // group indices whose world body is placed in this detection
-  std::size_t tested = 0;     // the slots tested (the rest had their kept contacts measured again)
-  for (const Slot& s : slots) {
-    if (s.kept) continue;
-    ++tested;
-    if (!reuse) continue;
-    for (const int k : {s.h.a, s.h.b})
-      if (state.placed_in[group[k]] != state.detection) state.placed_in[group[k]] = state.detection, to_place.push_back(k);
-  }
-  state.counters.narrowphase_shapes += to_place.size() + (reuse ? 0 : 2 * tested);
-  // A shape builds its edges on first use, safely from several threads
-  // (Shape::edges). Its prepared triangles, which only the report's detector
-  // reads, are built here with the placing when pairs are tested on several
-  // threads (the same numbers either way: only when they are built changes).
-  const bool shared = runs_parallel(slots.size(), kGrainPair);
-  const bool report = method == collision::Method::sat_then_report;
-  for_each_index(to_place.size(), [&](std::size_t u) {
-    const int k = to_place[u];
-    auto& shape = state.shapes[group[k]];
-    shape.place({setup.meshes[group[k]].get(), pose[k]});
-    if (shared && report && !shape.is_sphere() && !shape.is_capsule() && !setup.meshes[group[k]]->triangles().empty())
-      shape.triangle(0);
-  }, kGrainPlace);
   // Whether a tested pair's contacts are kept (collision::keep, into its entry).
   const auto keeps = [&](const Slot& s) { return keep && !s.kept && s.choice.made && !s.h.features.empty(); };
   for_each_index(
@@ -145,6 +143,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
     if (s.kept) {
       ++state.counters.contacts_kept;
     } else {
+      if (!reuse) state.counters.narrowphase_shapes += 2;  // the pair's own, built for its test
       if (keeps(s) && !s.kept_entry)
         collision::keep(state.kept.at(wa, wb), *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a], pose[s.h.b],
                         s.h.sat, s.hint, s.choice, s.h.features);

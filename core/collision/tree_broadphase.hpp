@@ -231,12 +231,11 @@ class TreeBroadphase {
       if (Ops::balls_overlap(b.spheres[ui], b.radii[ui], b.spheres[uj], b.radii[uj])) v |= 2;
       verdict_[k] = v;
     }, kGrainLight);
-    for (std::size_t k = 0; k < kept_.size(); ++k) {
-      const char v = verdict_[k];
-      work.exact_tests += growing ? 1 + (v & 1) : 1;
-      if (v & 1) candidates.push_back(kept_[k]);
-      if (v & 2) pairs.push_back(kept_[k]);
-    }
+    const std::size_t had = candidates.size();
+    const auto pair = [&](std::size_t k) { return kept_[k]; };
+    append_picked(candidates, kept_.size(), [&](std::size_t k) { return (verdict_[k] & 1) != 0; }, pair, kGrainLight);
+    append_picked(pairs, kept_.size(), [&](std::size_t k) { return (verdict_[k] & 2) != 0; }, pair, kGrainLight);
+    work.exact_tests = static_cast<std::int64_t>(kept_.size() + (candidates.size() - had));  // every kept pair grown, the candidates tight
     work.volume_tests = moving_.take_volume_tests() + fixed_.take_volume_tests();
     return work;
   }
@@ -256,7 +255,7 @@ class TreeBroadphase {
   std::vector<char> is_static_;
   std::vector<char> moved_;  // this update's reinserted bodies
   std::vector<Vec3> last_;   // each centre at the last update
-  std::vector<Pair> fresh_, merged_;
+  std::vector<Pair> stayed_, fresh_, merged_;  // find_pairs_of_moved's lists
   std::vector<char> verdict_;  // the kept pairs' exact tests (update)
   // The moved bodies' queries (find_pairs_of_moved), a block of them per item.
   std::vector<int> movers_;
@@ -281,9 +280,13 @@ class TreeBroadphase {
   // answer is a sorted set, so it does not depend on how the bodies were
   // blocked or which thread ran a block.
   void find_pairs_of_moved() {
-    std::erase_if(kept_, [&](const Pair& p) {
-      return moved_[static_cast<std::size_t>(p.first)] || moved_[static_cast<std::size_t>(p.second)];
-    });
+    stayed_.clear();
+    append_picked(
+        stayed_, kept_.size(),
+        [&](std::size_t k) {
+          return !moved_[static_cast<std::size_t>(kept_[k].first)] && !moved_[static_cast<std::size_t>(kept_[k].second)];
+        },
+        [&](std::size_t k) { return kept_[k]; }, kGrainLight);
     movers_.clear();
     for (std::size_t i = 0; i < leaf_.size(); ++i)
       if (moved_[i]) movers_.push_back(static_cast<int>(i));
@@ -315,7 +318,7 @@ class TreeBroadphase {
     sort_pairs(fresh_, leaf_.size());
     fresh_.erase(std::unique(fresh_.begin(), fresh_.end()), fresh_.end());
     merged_.clear();
-    std::merge(kept_.begin(), kept_.end(), fresh_.begin(), fresh_.end(), std::back_inserter(merged_));
+    std::merge(stayed_.begin(), stayed_.end(), fresh_.begin(), fresh_.end(), std::back_inserter(merged_));
     kept_.swap(merged_);
   }
 };

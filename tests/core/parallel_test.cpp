@@ -1,5 +1,6 @@
 // core/parallel.hpp: every index once, on any number of threads, and an
-// item's exception in the caller.
+// item's exception in the caller; append_picked gives the serial loop's list
+// (brute force) for any thread count, grain and list it appends to.
 #include "core/parallel.hpp"
 
 #include <gtest/gtest.h>
@@ -26,6 +27,22 @@ TEST_F(Parallel, EveryIndexRunsOnceForAnyThreadCountAndGrain) {
         std::vector<int> hits(n, 0);
         for_each_index(n, [&](std::size_t k) { hits[k] += 1; }, grain);
         for (std::size_t k = 0; k < n; ++k) ASSERT_EQ(hits[k], 1) << "threads " << t << " n " << n << " k " << k;
+      }
+}
+
+TEST_F(Parallel, AppendPickedGivesTheSerialListForAnyThreadCount) {
+  for (int t : {1, 2, 3})
+    for (std::size_t n : {0u, 5u, 64u, 1000u, 12345u})
+      for (std::size_t grain : {1u, 7u, 256u}) {
+        set_threads(t);
+        // Every third item and every item whose index has bit 4 set, squared.
+        const auto pick = [](std::size_t k) { return k % 3 == 0 || (k & 16) != 0; };
+        const auto item = [](std::size_t k) { return static_cast<long>(k * k); };
+        std::vector<long> expected = {-1, -2}, got = {-1, -2};
+        for (std::size_t k = 0; k < n; ++k)
+          if (pick(k)) expected.push_back(item(k));
+        append_picked(got, n, pick, item, grain);
+        ASSERT_EQ(got, expected) << "threads " << t << " n " << n << " grain " << grain;
       }
 }
 
