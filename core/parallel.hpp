@@ -43,8 +43,7 @@ bool in_item();
 // threads ran the 1,000-body box at 0.8x one thread's speed, the
 // narrowphase alone at 0.6x.
 inline constexpr std::size_t kGrainLight = 8192;  // ~20 ns items: a body's pose, reach or forces, a box test
-inline constexpr std::size_t kGrainPlace = 1024;  // a body's narrowphase geometry placed, ~150 ns
-inline constexpr std::size_t kGrainPair = 512;    // a pair's narrowphase test, 200 ns and up
+inline constexpr std::size_t kGrainPair = 512;    // a pair's lookups, placing and narrowphase test, 200 ns and up
 
 // For the determinism check (gacompare-state-hash --fine-grains): every
 // loop is cut into chunks of at most 4 items, so that a scene small enough
