@@ -147,15 +147,19 @@ inline bool refresh(const KeptContacts& k, const Mesh& ma, const Mesh& mb, const
                     double band, PairContact& sat, std::vector<FeatureContact>& out) {
   if (!k.valid) return false;
   const double size = std::max(ma.size(), mb.size());
-  const Pose rel = relative_pose(pa, pb);
-  const Mat3& rotation = rel.rotation;
-  const Vec3 dt = rel.position - k.offset;
+  const Vec3 position = pa.rotation.transpose() * (pb.position - pa.position);  // relative_pose's, as there
+  const Vec3 dt = position - k.offset;
+  const Vec3 n_ab = k.ref_is_a ? k.normal : Vec3(-(k.rotation * k.normal));  // a towards b, a's frame
+  const double along = dt.dot(n_ab);  // > 0: apart
+  // The slide across the normal without the turn first: a pair in motion
+  // fails here, before the rotations are multiplied (the turn only adds).
+  const double across = (dt - along * n_ab).norm();
+  if (!(across <= kKeepSlide * size)) return false;
+  const Mat3 rotation = pa.rotation.transpose() * pb.rotation;  // relative_pose's rotation
   // The largest distance a unit vector of b's frame turned (the spectral norm
   // of ΔR − I, 2 sin(θ/2)); the Frobenius norm is √2 times it for a rotation.
   const double turn = (k.rotation.transpose() * rotation - Mat3::Identity()).norm() / std::sqrt(2.0) * size;
-  const Vec3 n_ab = k.ref_is_a ? k.normal : Vec3(-(k.rotation * k.normal));  // a towards b, a's frame
-  const double along = dt.dot(n_ab);  // > 0: apart
-  const double slide = (dt - along * n_ab).norm() + turn;
+  const double slide = across + turn;
   if (!(slide <= kKeepSlide * size) || !(turn - along < k.left_out)) return false;
   // The choices (FaceChoice): each compares two gaps, which a translation
   // changes by its component along each one's normal (so their difference by
