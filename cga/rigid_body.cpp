@@ -272,19 +272,6 @@ double RigidBodies::inverse_effective_mass(const Motion& b, const Arm& a) {
   return b.inv_mass - scalar_product(a.r_n, a.turn);
 }
 
-double RigidBodies::normal_velocity(const Motion& b, const Arm& a, const Eigen::Vector3d& n) {
-  return scalar_product(vector3(n), b.v) - scalar_product(a.r_n, b.w);
-}
-
-void RigidBodies::push(Motion& b, const Arm& a, const Eigen::Vector3d& n, double j) {
-  if (b.inv_mass == 0) return;
-  const Vector3 dj = j * vector3(n);
-  b.v += b.inv_mass * dj;
-  b.w += j * a.turn;
-  b.impulse += dj;
-  b.angular_impulse += j * a.r_n;
-}
-
 Eigen::Vector3d RigidBodies::point_velocity(const Motion& b, const Eigen::Vector3d& p) {
   return to_eigen(b.v + ((vector3(p) - b.x) | b.w));
 }

@@ -114,4 +114,18 @@ struct RigidBodies {
   static void displace(const Model& m, std::span<double> y, std::size_t b, const Motion& pseudo);
 };
 
+// In the header: the contact solver's sweeps call these once per row per sweep.
+inline double RigidBodies::normal_velocity(const Motion& b, const Arm& a, const Eigen::Vector3d& n) {
+  return scalar_product(vector3(n), b.v) - scalar_product(a.r_n, b.w);
+}
+
+inline void RigidBodies::push(Motion& b, const Arm& a, const Eigen::Vector3d& n, double j) {
+  if (b.inv_mass == 0) return;
+  const Vector3 dj = j * vector3(n);
+  b.v += b.inv_mass * dj;
+  b.w += j * a.turn;
+  b.impulse += dj;
+  b.angular_impulse += j * a.r_n;
+}
+
 }  // namespace gacompare::cga

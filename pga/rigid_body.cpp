@@ -264,18 +264,6 @@ double RigidBodies::inverse_effective_mass(const Motion& b, const Arm& a) {
   return join(a.row, a.turn).c[0];
 }
 
-double RigidBodies::normal_velocity(const Motion& b, const Arm& a, const Eigen::Vector3d& n) {
-  (void)n;
-  return join(b.rate, a.row).c[0];
-}
-
-void RigidBodies::push(Motion& b, const Arm& a, const Eigen::Vector3d& n, double j) {
-  (void)n;
-  if (b.inv_mass == 0) return;
-  b.rate += j * a.turn;
-  b.impulse += j * a.row;
-}
-
 Eigen::Vector3d RigidBodies::point_velocity(const Motion& b, const Eigen::Vector3d& p) {
   return velocity_of(b.rate, point(p - b.x));
 }

@@ -128,6 +128,19 @@ struct RigidBodies {
   static void displace(const Model& m, std::span<double> y, std::size_t b, const Motion& pseudo);
 };
 
+// In the header: the contact solver's sweeps call these once per row per sweep.
+inline double RigidBodies::normal_velocity(const Motion& b, const Arm& a, const Eigen::Vector3d& n) {
+  (void)n;
+  return join(b.rate, a.row).c[0];
+}
+
+inline void RigidBodies::push(Motion& b, const Arm& a, const Eigen::Vector3d& n, double j) {
+  (void)n;
+  if (b.inv_mass == 0) return;
+  b.rate += j * a.turn;
+  b.impulse += j * a.row;
+}
+
 // X × V, the velocity of the point X (any weight; an ideal point turns only)
 // under the rate V: the commutator product, an ideal point.
 inline Vec3 velocity_of(const Line& rate, const Point& x) {

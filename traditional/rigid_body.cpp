@@ -332,16 +332,6 @@ RigidBodies::Arm RigidBodies::arm(const Motion& b, const Vec& p, const Vec& n) {
 
 double RigidBodies::inverse_effective_mass(const Motion& b, const Arm& a) { return b.inv_mass + a.r_n.dot(a.turn); }
 
-double RigidBodies::normal_velocity(const Motion& b, const Arm& a, const Vec& n) { return n.dot(b.v) + a.r_n.dot(b.w); }
-
-void RigidBodies::push(Motion& b, const Arm& a, const Vec& n, double j) {
-  if (b.inv_mass == 0) return;
-  b.v += (j * b.inv_mass) * n;
-  b.w += j * a.turn;
-  b.impulse += j * n;
-  b.angular_impulse += j * a.r_n;
-}
-
 Vec RigidBodies::point_velocity(const Motion& b, const Vec& p) { return b.v + b.w.cross(p - b.x); }
 
 Vec RigidBodies::in_plane(const Vec& n, const Vec& u) { return n.cross(u.cross(n)); }

@@ -101,4 +101,17 @@ struct RigidBodies {
   static void displace(const Model& m, std::span<double> y, std::size_t b, const Motion& pseudo);
 };
 
+// In the header: the contact solver's sweeps call these once per row per sweep.
+inline double RigidBodies::normal_velocity(const Motion& b, const Arm& a, const Eigen::Vector3d& n) {
+  return n.dot(b.v) + a.r_n.dot(b.w);
+}
+
+inline void RigidBodies::push(Motion& b, const Arm& a, const Eigen::Vector3d& n, double j) {
+  if (b.inv_mass == 0) return;
+  b.v += (j * b.inv_mass) * n;
+  b.w += j * a.turn;
+  b.impulse += j * n;
+  b.angular_impulse += j * a.r_n;
+}
+
 }  // namespace gacompare::traditional

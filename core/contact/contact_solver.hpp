@@ -974,26 +974,42 @@ class ContactSolver {
       std::vector<Vec3> point;
     };
     Gathered gather(const Model& m, std::span<const double> y, BodyIndices world, std::span<const PairHit> hits) const {
+      constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
       Gathered g;
-      std::vector<std::size_t> slot_of(world.size(), std::numeric_limits<std::size_t>::max());  // body of the group → slot
-      const auto slot = [&](int b) {
-        std::size_t& s = slot_of[static_cast<std::size_t>(b)];
-        if (s == std::numeric_limits<std::size_t>::max())
-          s = g.motion.size(), g.motion.push_back(Bodies::motion(m, y, static_cast<std::size_t>(b))), g.body_of.push_back(b);
-        return s;
+      // Body of the group → slot: a table per thread, kept between calls and
+      // cleared where it was written. A fresh table the size of the group at
+      // every call filled 80 KB for each island's response in a 10,000-body
+      // world, where the island has a few bodies.
+      thread_local std::vector<std::size_t> slot_of;
+      if (slot_of.size() < world.size()) slot_of.resize(world.size(), kNone);
+      struct Cleared {  // on the way out of the block below, an exception's too
+        std::vector<std::size_t>& table;
+        const std::vector<int>& written;
+        ~Cleared() {
+          for (const int b : written) table[static_cast<std::size_t>(b)] = kNone;
+        }
       };
-      for (std::size_t hi = 0; hi < hits.size(); ++hi) {
-        const auto& h = hits[hi];
-        const std::size_t sa = slot(h.a), sb = slot(h.b);
-        const Motion& ma = g.motion[sa];
-        const Motion& mb = g.motion[sb];
-        for (const auto& c : h.features) {
-          Row r{world[h.a], world[h.b], sa, sb, hi, c.normal, c.point - Bodies::position(ma), c.point - Bodies::position(mb),
-                Bodies::arm(ma, c.point, c.normal), Bodies::arm(mb, c.point, c.normal), 0, 0, 0, 0, c.depth};
-          r.k = Bodies::inverse_effective_mass(ma, r.arm_a) + Bodies::inverse_effective_mass(mb, r.arm_b);
-          if (!(r.k > 0)) continue;
-          g.rows.push_back(r);
-          g.point.push_back(c.point);
+      {
+        const Cleared cleared{slot_of, g.body_of};
+        const auto slot = [&](int b) {
+          std::size_t& s = slot_of[static_cast<std::size_t>(b)];
+          if (s == kNone)
+            s = g.motion.size(), g.motion.push_back(Bodies::motion(m, y, static_cast<std::size_t>(b))), g.body_of.push_back(b);
+          return s;
+        };
+        for (std::size_t hi = 0; hi < hits.size(); ++hi) {
+          const auto& h = hits[hi];
+          const std::size_t sa = slot(h.a), sb = slot(h.b);
+          const Motion& ma = g.motion[sa];
+          const Motion& mb = g.motion[sb];
+          for (const auto& c : h.features) {
+            Row r{world[h.a], world[h.b], sa, sb, hi, c.normal, c.point - Bodies::position(ma), c.point - Bodies::position(mb),
+                  Bodies::arm(ma, c.point, c.normal), Bodies::arm(mb, c.point, c.normal), 0, 0, 0, 0, c.depth};
+            r.k = Bodies::inverse_effective_mass(ma, r.arm_a) + Bodies::inverse_effective_mass(mb, r.arm_b);
+            if (!(r.k > 0)) continue;
+            g.rows.push_back(r);
+            g.point.push_back(c.point);
+          }
         }
       }
       return g;
