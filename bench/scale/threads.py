@@ -4,6 +4,7 @@
 traditional and cga on one thread and on two (gacompare --threads).
 
   bench/scale/threads.py --binary build/ci/compare/gacompare --sizes 1000,10000 --repeat 3
+  bench/scale/threads.py --binary build/ci/compare/gacompare --sizes 10000 --repeat 2 --duration 1 --time-of-impact none
 
 Each size runs `--duration` simulated seconds per setting; the thread counts
 alternate within each repeat (1, 2, 2, 1, ...) and the backends' order
@@ -13,7 +14,8 @@ ratio of the medians), and whether every sample of every body (positions,
 orientations, velocities) and every counter came out the same on two
 threads as on one: each run's state hash (results.json "state_hash", the
 SHA-256 of every sample's doubles to the bit, the solver's steps and every
-counter; core/run.hpp), equal or not.
+counter; core/run.hpp), equal or not. `--time-of-impact` sets the boxes'
+time_of_impact as scale.py's does (none: no impact search).
 """
 import os
 import statistics
@@ -30,11 +32,13 @@ def main():
     ap = runs.parser(__doc__, sizes="1000")
     ap.add_argument("--duration", type=float, default=0.2)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--time-of-impact", default=None,
+                    help="the boxes' time_of_impact (box_scene.py); none: no impact search")
     args, sizes, tmp = runs.start(ap, [("N", True), ("backend", False), ("1 thread, s per simulated s", True),
                                        ("2 threads", True), ("speed-up", True), ("same answer", False)])
     backends = ["traditional", "cga"]
     for n in sizes:
-        scene = box_scene.scene(n, args.seed, args.duration, args.duration)
+        scene = box_scene.scene(n, args.seed, args.duration, args.duration, args.time_of_impact)
         wall = {(b, t): [] for b in backends for t in (1, 2)}
         hashes = {(b, t): set() for b in backends for t in (1, 2)}
         for rep in range(args.repeat):
