@@ -80,10 +80,12 @@ struct KeptContacts {
   double left_out = 0;
 };
 
-// b's pose in a's frame: what the bound is measured on.
-inline Pose relative_pose(const Pose& a, const Pose& b) {
-  return {a.rotation.transpose() * b.rotation, a.rotation.transpose() * (b.position - a.position)};
-}
+// b's pose in a's frame: what the bound is measured on. Its two parts also
+// apart, so that refresh can test the translation before it multiplies the
+// rotations.
+inline Vec3 relative_position(const Pose& a, const Pose& b) { return a.rotation.transpose() * (b.position - a.position); }
+inline Mat3 relative_rotation(const Pose& a, const Pose& b) { return a.rotation.transpose() * b.rotation; }
+inline Pose relative_pose(const Pose& a, const Pose& b) { return {relative_rotation(a, b), relative_position(a, b)}; }
 
 // Keeps a pair's contacts found by the whole narrowphase at poses pa, pb (the
 // answer `sat`, its axis `hint`, the manifold's `choice` and `features`, world
@@ -147,15 +149,14 @@ inline bool refresh(const KeptContacts& k, const Mesh& ma, const Mesh& mb, const
                     double band, PairContact& sat, std::vector<FeatureContact>& out) {
   if (!k.valid) return false;
   const double size = std::max(ma.size(), mb.size());
-  const Vec3 position = pa.rotation.transpose() * (pb.position - pa.position);  // relative_pose's, as there
-  const Vec3 dt = position - k.offset;
+  const Vec3 dt = relative_position(pa, pb) - k.offset;
   const Vec3 n_ab = k.ref_is_a ? k.normal : Vec3(-(k.rotation * k.normal));  // a towards b, a's frame
   const double along = dt.dot(n_ab);  // > 0: apart
   // The slide across the normal without the turn first: a pair in motion
   // fails here, before the rotations are multiplied (the turn only adds).
   const double across = (dt - along * n_ab).norm();
   if (!(across <= kKeepSlide * size)) return false;
-  const Mat3 rotation = pa.rotation.transpose() * pb.rotation;  // relative_pose's rotation
+  const Mat3 rotation = relative_rotation(pa, pb);
   // The largest distance a unit vector of b's frame turned (the spectral norm
   // of ΔR − I, 2 sin(θ/2)); the Frobenius norm is √2 times it for a rotation.
   const double turn = (k.rotation.transpose() * rotation - Mat3::Identity()).norm() / std::sqrt(2.0) * size;

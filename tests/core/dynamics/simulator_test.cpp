@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <string>
+#include <vector>
+
 namespace gacompare::core {
 namespace {
 
@@ -33,6 +37,33 @@ TEST(Simulator, FirstNonFiniteNamesTheOwner) {
   EXPECT_EQ(first_nonfinite(y, 6, names, "particle"), "");
   y[7] = std::numeric_limits<double>::infinity();
   EXPECT_EQ(first_nonfinite(y, 6, names, "particle"), "particle 'b'");
+}
+
+// first_nonfinite looks element by element only when its running sums say
+// so: every place (those the sums take four at a time and the tail after
+// them, on lengths that are and are not multiples of four) and every kind of
+// non-finite value is found, and the largest finite values and −0 are not.
+TEST(Simulator, FirstNonFiniteFindsEveryPlaceAndKind) {
+  const double bad[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity()};
+  const auto name = [](std::size_t k) {
+    std::string out = std::to_string(k);
+    out.insert(0, 1, 'b');  // not "b" + ...: GCC 12 -Wrestrict, bug 105651
+    return out;
+  };
+  for (const std::size_t n : {1u, 3u, 4u, 7u, 12u, 13u}) {
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < n; ++k) names.push_back(name(k));
+    std::vector<double> y(n, std::numeric_limits<double>::max());
+    y[0] = -0.0, y[n - 1] = -std::numeric_limits<double>::max();
+    EXPECT_EQ(first_nonfinite(y, 1, names, "body"), "") << n;
+    for (std::size_t at = 0; at < n; ++at)
+      for (const double v : bad) {
+        std::vector<double> z = y;
+        z[at] = v;
+        EXPECT_EQ(first_nonfinite(z, 1, names, "body"), "body '" + name(at) + "'") << n << " " << v;
+      }
+  }
 }
 
 }  // namespace
