@@ -517,9 +517,8 @@ TYPED_TEST_P(CollisionStepCases, DenseOutputPairsRestartAfterAnImpact) {
 
 // The stages' threads (core/parallel.hpp) change nothing: 80 cubes, spheres
 // and capsules dropped onto a slab with seeded spins, 0.4 s, run on one
-// thread and on two, give
-// every sample and every counter bit for bit (80 bodies: the derivative's and
-// the poses' loops split, not only the narrowphase's pairs).
+// thread and on two (with the stages' grains and with fine ones), give
+// every sample and every counter bit for bit.
 TYPED_TEST_P(CollisionStepCases, TwoThreadsGiveTheSameRunBitForBit) {
   core::Scene s = this->drop();
   const core::Body slab = s.bodies[0];
@@ -546,24 +545,34 @@ TYPED_TEST_P(CollisionStepCases, TwoThreadsGiveTheSameRunBitForBit) {
       if (auto* c = std::get_if<core::Collisions>(&e)) c->time_of_impact = method;
     core::set_threads(1);
     const core::Run one = core::simulate<TypeParam>(s);
-    core::set_threads(2);
-    const core::Run two = core::simulate<TypeParam>(s);
-    core::set_threads(1);
-    ASSERT_FALSE(one.error || two.error) << (one.error ? *one.error : *two.error);
+    ASSERT_FALSE(one.error) << *one.error;
     ASSERT_GT(one.counters.at("contacts"), 0u);
     if (method == core::TimeOfImpact::none) {
       ASSERT_GT(one.counters.at("push_out_detections"), 0u);
     }
-    ASSERT_EQ(one.samples.size(), two.samples.size());
-    for (std::size_t k = 0; k < one.samples.size(); ++k)
-      for (std::size_t i = 0; i < one.samples[k].bodies.size(); ++i) {
-        const auto &a = one.samples[k].bodies[i], &b = two.samples[k].bodies[i];
-        ASSERT_EQ(a.position, b.position) << "t=" << one.samples[k].t << " body " << i;
-        ASSERT_EQ(a.orientation, b.orientation) << "t=" << one.samples[k].t << " body " << i;
-        ASSERT_EQ(a.velocity, b.velocity) << "t=" << one.samples[k].t << " body " << i;
-        ASSERT_EQ(a.angular_velocity, b.angular_velocity) << "t=" << one.samples[k].t << " body " << i;
-      }
-    EXPECT_EQ(one.counters, two.counters);
+    // Two threads with the stages' grains, then with every loop cut into
+    // chunks of a few items (core::set_fine_grains), so that loops too short
+    // to split here (the direct solve's blocks of groups, an island's pairs)
+    // run split too.
+    for (const bool fine : {false, true}) {
+      SCOPED_TRACE(fine ? "fine grains" : "the stages' grains");
+      core::set_threads(2);
+      core::set_fine_grains(fine);
+      const core::Run two = core::simulate<TypeParam>(s);
+      core::set_threads(1);
+      core::set_fine_grains(false);
+      ASSERT_FALSE(two.error) << *two.error;
+      ASSERT_EQ(one.samples.size(), two.samples.size());
+      for (std::size_t k = 0; k < one.samples.size(); ++k)
+        for (std::size_t i = 0; i < one.samples[k].bodies.size(); ++i) {
+          const auto &a = one.samples[k].bodies[i], &b = two.samples[k].bodies[i];
+          ASSERT_EQ(a.position, b.position) << "t=" << one.samples[k].t << " body " << i;
+          ASSERT_EQ(a.orientation, b.orientation) << "t=" << one.samples[k].t << " body " << i;
+          ASSERT_EQ(a.velocity, b.velocity) << "t=" << one.samples[k].t << " body " << i;
+          ASSERT_EQ(a.angular_velocity, b.angular_velocity) << "t=" << one.samples[k].t << " body " << i;
+        }
+      EXPECT_EQ(one.counters, two.counters);
+    }
   }
 }
 
@@ -660,6 +669,24 @@ struct CrowdedBoxAStepOn {
     model = B::build(scene);
     y.resize(B::state_size(model));
     B::initial_state(model, y);
+  }
+};
+
+// A world's bodies as one island for collider C: its subsystem, and every
+// pair but two static bodies' as its candidate pairs.
+template <class C>
+struct WholeBoxIsland {
+  core::Subsystem<typename C::BodiesType> a;
+  std::vector<std::pair<int, int>> among;
+  template <class Model>
+  WholeBoxIsland(const Model& model, const C& c)
+      : a(model.bodies, c.setup.all_bodies, C::BodiesType::state_size(model.bodies) / c.setup.all_bodies.size(),
+          c.setup.solver) {
+    const auto n = static_cast<int>(c.setup.all_bodies.size());
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j)
+        if (!(c.setup.is_static[static_cast<std::size_t>(i)] && c.setup.is_static[static_cast<std::size_t>(j)]))
+          among.emplace_back(i, j);
   }
 };
 
@@ -836,12 +863,9 @@ TYPED_TEST_P(CollisionStepCases, ThePushOutsDirectCorrectionMovesTheBodiesAsTheS
   c.setup.settings.penetration_tolerance = tol;
   c.setup.settings.contact_solver = core::ContactSolverMethod::direct;
   const std::size_t n = c.setup.all_bodies.size();
-  core::Subsystem<typename C::BodiesType> a(model.bodies, c.setup.all_bodies, C::BodiesType::state_size(model.bodies) / n,
-                                            c.setup.solver);
-  std::vector<std::pair<int, int>> among;
-  for (int i = 0; i < static_cast<int>(n); ++i)
-    for (int j = i + 1; j < static_cast<int>(n); ++j)
-      if (!(c.setup.is_static[static_cast<std::size_t>(i)] && c.setup.is_static[static_cast<std::size_t>(j)])) among.emplace_back(i, j);
+  const WholeBoxIsland<C> island(model, c);
+  const auto& a = island.a;
+  const auto& among = island.among;
   typename C::State state;
   core::Profile profile;
   std::vector<double> ys = a.gather(std::span<const double>(y).subspan(model.offset));
@@ -871,6 +895,58 @@ TYPED_TEST_P(CollisionStepCases, ThePushOutsDirectCorrectionMovesTheBodiesAsTheS
   EXPECT_LE(differ, 1e-3 * tol);
   EXPECT_GT(moved, tol);
   std::printf("[ %zu contacts, moved up to %.3g m, the two apart by %.3g m ]\n", deep.hits.size(), moved, differ);
+}
+
+// The direct solve's groups on the run's threads (contact_solver.hpp,
+// direct) give the answer one thread gives, bit for bit: the crowded box's
+// pile a step on, its response and then its push-out's correction, on one
+// thread and on two with every loop cut into chunks of a few items (the
+// groups' blocks then hold a few lines each, so there are many). The pile's
+// contacts fall into several groups (bodies that touch none of the others
+// between them), or the split would not run at all.
+TYPED_TEST_P(CollisionStepCases, TheDirectSolvesGroupsOnTwoThreadsGiveOneThreadsAnswer) {
+  using B = TypeParam;
+  const CrowdedBoxAStepOn<B> box(this->drop(), 1);
+  const auto& model = box.model;
+  using C = std::decay_t<decltype(*model.collisions)>;
+  C c = *model.collisions;
+  c.setup.settings.penetration_tolerance = box.tolerance;
+  c.setup.settings.contact_solver = core::ContactSolverMethod::direct;
+  const WholeBoxIsland<C> island(model, c);
+  const auto& a = island.a;
+  const auto& among = island.among;
+  const std::vector<double> ys = a.gather(std::span<const double>(box.y).subspan(model.offset));
+  struct Answer {
+    std::vector<double> y;
+    core::CollisionCounters counters;
+  };
+  const auto respond_and_correct = [&](int threads, bool fine) {
+    core::set_threads(threads);
+    core::set_fine_grains(fine);
+    typename C::State state;
+    core::Profile profile;
+    Answer out{ys, {}};
+    const core::Detection d = c.detect_among(state, a.model, out.y, a.group, among, profile);
+    c.respond(state, a.model, out.y, a.group, d.hits, box.step, profile);
+    const core::Detection deep = c.detect_among(state, a.model, out.y, a.group, among, profile);
+    c.push_out(state, a.model, out.y, a.group, deep.hits, profile);
+    core::set_threads(1);
+    core::set_fine_grains(false);
+    out.counters = state.counters;
+    return out;
+  };
+  const Answer one = respond_and_correct(1, false), two = respond_and_correct(2, true);
+  // More groups solved than solves: some solve split into groups.
+  ASSERT_GT(one.counters.direct_rounds, one.counters.solves);
+  ASSERT_GT(one.counters.direct_rounds, 10u);
+  ASSERT_EQ(one.y.size(), two.y.size());
+  for (std::size_t k = 0; k < one.y.size(); ++k) ASSERT_EQ(one.y[k], two.y[k]) << "state entry " << k;
+  EXPECT_EQ(one.counters.direct_rounds, two.counters.direct_rounds);
+  EXPECT_EQ(one.counters.direct_factorisations, two.counters.direct_factorisations);
+  EXPECT_EQ(one.counters.direct_pivots, two.counters.direct_pivots);
+  EXPECT_NE(one.y, ys);  // the response moved the pile
+  std::printf("[ %llu groups' rounds in %llu solves ]\n", static_cast<unsigned long long>(one.counters.direct_rounds),
+              static_cast<unsigned long long>(one.counters.solves));
 }
 
 // What the search buys beyond depth: an elastic bounce (restitution 1) keeps
@@ -913,6 +989,7 @@ REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithin
                             FastBodiesNeverPassThroughThinPlates, TheTunnellingRuleReadsThePairsOwnBodies,
                             TheTunnellingRuleReadsHowFastAPairCloses, AReachBoundsEveryPointsPathInAStep,
                             AReachBoundsThePathOfAPushedBody, ThePushOutsBoundsHoldEveryPairsDepth,
-                            ThePushOutsDirectCorrectionMovesTheBodiesAsTheSweepsDo);
+                            ThePushOutsDirectCorrectionMovesTheBodiesAsTheSweepsDo,
+                            TheDirectSolvesGroupsOnTwoThreadsGiveOneThreadsAnswer);
 
 }  // namespace gacompare::testing

@@ -42,6 +42,7 @@
 #include "core/collision/collision_setup.hpp"
 #include "core/contact/coulomb.hpp"
 #include "core/contact/lcp.hpp"
+#include "core/parallel.hpp"
 #include "core/stage.hpp"
 
 #include <Eigen/SparseCore>
@@ -79,6 +80,10 @@ inline constexpr double kVelocityTolerance = 1e-11;
 // impulses of the round before, friction_limit); the sweeps after it finish
 // what is left.
 inline constexpr int kFrictionRounds = 8;
+// Lines per block of the direct solve's groups on the run's threads: the
+// piles' groups are a few lines each, about a microsecond, so a block of
+// this many holds the ~100 µs a chunk needs (core/parallel.hpp).
+inline constexpr std::size_t kLinesPerBlock = 256;
 // A frictionless warm start whose residual is at most this share of the
 // tolerance is kept without a solve (direct). A kept answer's residual stays
 // in the velocities step after step: kept at the tolerance itself, a 20-cube
@@ -531,34 +536,27 @@ class ContactSolver {
       // factorised in the augmented form (lcp.cpp).
       if (std::ranges::any_of(groups, [&](const auto& g) { return static_cast<Eigen::Index>(g.size()) >= how.augmented_from; }))
         p.G = body_factor(lines, motion, moving);
-      for (const std::vector<Eigen::Index>& group : groups) {
-        const auto m = static_cast<Eigen::Index>(group.size());
-        for (Eigen::Index i = 0; i < m; ++i) local[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])] = i;
-        if (groups.size() == 1) {  // one group holds every line, in order: the problem itself
-          Eigen::VectorXd x = lambda;
-          solve_group(p, x, group, local, nr, frictions, how, solved);
-          lambda = x;
-          break;
-        }
-        contact::Blcp g;
-        std::vector<Eigen::Triplet<double>> t;
-        for (const Eigen::Index k : group)
-          for (Eigen::SparseMatrix<double>::InnerIterator it(p.A, k); it; ++it)
-            t.emplace_back(local[static_cast<std::size_t>(it.row())], local[static_cast<std::size_t>(k)], it.value());
-        g.A.resize(m, m);
-        g.A.setFromTriplets(t.begin(), t.end());
-        g.b = p.b(group), g.lo = p.lo(group), g.hi = p.hi(group), g.weight = p.weight(group);
-        if (p.G.rows() > 0 && m >= how.augmented_from) {  // the group's rows of G (its bodies' columns)
-          std::vector<Eigen::Triplet<double>> gt;
-          for (Eigen::Index u = 0; u < m; ++u)
-            for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(p.G, group[static_cast<std::size_t>(u)]); it; ++it)
-              gt.emplace_back(u, it.col(), it.value());
-          g.G.resize(m, p.G.cols());
-          g.G.setFromTriplets(gt.begin(), gt.end());
-        }
-        Eigen::VectorXd x = lambda(group);
-        solve_group(g, x, group, local, nr, frictions, how, solved);
-        lambda(group) = x;
+      if (groups.size() == 1) {  // one group holds every line, in order: the problem itself
+        for (Eigen::Index i = 0; i < n; ++i) local[static_cast<std::size_t>(i)] = i;
+        GroupCounts counts;
+        solve_group(p, lambda, groups[0], local, nr, frictions, how, counts);
+        solved = add(counts);
+      } else {
+        // The groups on the run's threads (core/parallel.hpp), in blocks of
+        // consecutive groups of kLinesPerBlock lines or more: a group reads
+        // only its own lines of p and writes only its own entries of lambda
+        // and local, and each block counts into its own slot, added in block
+        // order after. The answer is the same for any number of threads.
+        std::vector<std::size_t> first{0};  // each block's first group
+        for (std::size_t k = 0, lines_in = 0; k < groups.size(); ++k)
+          if ((lines_in += groups[k].size()) >= grain_of(kLinesPerBlock) && k + 1 < groups.size())
+            first.push_back(k + 1), lines_in = 0;
+        first.push_back(groups.size());
+        std::vector<GroupCounts> counts(first.size() - 1);
+        for_each_index(counts.size(), [&](std::size_t q) {
+          for (std::size_t k = first[q]; k < first[q + 1]; ++k) solve_one(p, lambda, groups[k], local, nr, frictions, how, counts[q]);
+        }, 1);
+        for (const GroupCounts& c : counts) solved = add(c) && solved;
       }
       if (const double exact = coulomb ? polish(c, lambda, held, held_residual, converged) : -1; left) *left = exact;
       for (Eigen::Index k = 0; k < nr; ++k) {
@@ -619,13 +617,54 @@ class ContactSolver {
       if (r.residual < before) lambda = x;
       return r.solved ? r.residual : -1;
     }
+    // What one group's solve adds to the counters, apart from them so that
+    // groups can be solved on several threads (direct).
+    struct GroupCounts {
+      std::uint64_t rounds = 0, pivots = 0, factorisations = 0, updates = 0, augmented = 0, held = 0, proximal = 0,
+                    unsolved = 0;
+    };
+    // Adds c to the counters; whether every round it counts was solved.
+    bool add(const GroupCounts& c) const {
+      counters.direct_rounds += c.rounds, counters.direct_pivots += c.pivots;
+      counters.direct_factorisations += c.factorisations, counters.direct_updates += c.updates;
+      counters.direct_augmented += c.augmented, counters.direct_held += c.held;
+      counters.direct_proximal += c.proximal, counters.direct_unsolved += c.unsolved;
+      return c.unsolved == 0;
+    }
+    // One group of several (direct): its own problem, the rows and columns of
+    // p's lines in it, solved from and into its entries of lambda.
+    void solve_one(const contact::Blcp& p, Eigen::VectorXd& lambda, const std::vector<Eigen::Index>& group,
+                   std::vector<Eigen::Index>& local, Eigen::Index nr, const std::vector<Friction>& frictions,
+                   const contact::BlcpSettings& how, GroupCounts& counts) const {
+      const auto m = static_cast<Eigen::Index>(group.size());
+      for (Eigen::Index i = 0; i < m; ++i) local[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])] = i;
+      contact::Blcp g;
+      std::vector<Eigen::Triplet<double>> t;
+      for (const Eigen::Index k : group)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(p.A, k); it; ++it)
+          t.emplace_back(local[static_cast<std::size_t>(it.row())], local[static_cast<std::size_t>(k)], it.value());
+      g.A.resize(m, m);
+      g.A.setFromTriplets(t.begin(), t.end());
+      g.b = p.b(group), g.lo = p.lo(group), g.hi = p.hi(group), g.weight = p.weight(group);
+      if (p.G.rows() > 0 && m >= how.augmented_from) {  // the group's rows of G (its bodies' columns)
+        std::vector<Eigen::Triplet<double>> gt;
+        for (Eigen::Index u = 0; u < m; ++u)
+          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(p.G, group[static_cast<std::size_t>(u)]); it; ++it)
+            gt.emplace_back(u, it.col(), it.value());
+        g.G.resize(m, p.G.cols());
+        g.G.setFromTriplets(gt.begin(), gt.end());
+      }
+      Eigen::VectorXd x = lambda(group);
+      solve_group(g, x, group, local, nr, frictions, how, counts);
+      lambda(group) = x;
+    }
     // One group's rounds (see direct): each friction row's box ±μ λ̄_n from
     // the normal impulses of the round before (friction_limit: its pair's
     // mean), solved again until the bounds of the rows that reach them
     // settle, at most kFrictionRounds times.
     void solve_group(contact::Blcp& g, Eigen::VectorXd& x, const std::vector<Eigen::Index>& group,
                      const std::vector<Eigen::Index>& local, Eigen::Index nr, const std::vector<Friction>& frictions,
-                     const contact::BlcpSettings& how, bool& solved) const {
+                     const contact::BlcpSettings& how, GroupCounts& counts) const {
       struct Rub {
         Eigen::Index at;  // a friction line (local)
         const Friction* f;
@@ -654,14 +693,14 @@ class ContactSolver {
         }
         if (round > 0 && moved <= how.velocity_tolerance) break;
         const contact::BlcpResult r = contact::solve_blcp(g, x, how);
-        ++counters.direct_rounds;
-        counters.direct_pivots += static_cast<std::uint64_t>(r.pivots);
-        counters.direct_factorisations += static_cast<std::uint64_t>(r.factorisations);
-        counters.direct_updates += static_cast<std::uint64_t>(r.updates);
-        counters.direct_augmented += static_cast<std::uint64_t>(r.augmented);
-        counters.direct_held += static_cast<std::uint64_t>(r.held);
-        counters.direct_proximal += static_cast<std::uint64_t>(r.proximal);
-        if (!r.solved) ++counters.direct_unsolved, solved = false;
+        ++counts.rounds;
+        counts.pivots += static_cast<std::uint64_t>(r.pivots);
+        counts.factorisations += static_cast<std::uint64_t>(r.factorisations);
+        counts.updates += static_cast<std::uint64_t>(r.updates);
+        counts.augmented += static_cast<std::uint64_t>(r.augmented);
+        counts.held += static_cast<std::uint64_t>(r.held);
+        counts.proximal += static_cast<std::uint64_t>(r.proximal);
+        counts.unsolved += !r.solved;
         if (rubs.empty()) break;
       }
     }
