@@ -79,7 +79,7 @@ requires collision::NarrowphaseBody<NarrowBody>
 auto Collider<Bodies, NarrowBody, Spheres>::detect_among(State& state, const Model& m, std::span<const double> y,
                                                          BodyIndices group,
                                                          std::span<const std::pair<int, int>> candidates,
-                                                         Profile& profile) const -> Detection {
+                                                         Profile& profile, std::size_t grain) const -> Detection {
   const std::size_t n = group.size();
   Detection d;
   std::vector<std::pair<int, int>> pairs;
@@ -106,7 +106,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::detect_among(State& state, const Mod
       pairs.emplace_back(i, j);
     }
   }
-  narrow(state, group, pose, pairs, d, profile);
+  narrow(state, group, pose, pairs, d, profile, {}, grain);
   return d;
 }
 

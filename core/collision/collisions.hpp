@@ -26,6 +26,7 @@
 #include "core/dynamics/rigid_body.hpp"
 #include "core/model/model.hpp"
 #include "core/model/scene.hpp"
+#include "core/parallel.hpp"
 #include "core/stage.hpp"
 #include "core/collision/time_of_impact.hpp"
 
@@ -174,9 +175,11 @@ struct Collider {
   // The same for a group whose candidate pairs are known (an island within
   // its step: the pairs its bodies' grown spheres link, core/collision/collision_step.hpp):
   // of those, the pairs whose own spheres overlap (in a frame at the group's
-  // mean position) and that reach a static body's box go to the narrowphase.
+  // mean position) and that reach a static body's box go to the narrowphase,
+  // its pairs split across the run's threads in chunks of `grain`.
   Detection detect_among(State& state, const Model& m, std::span<const double> y, BodyIndices group,
-                         std::span<const std::pair<int, int>> candidates, Profile& profile) const;
+                         std::span<const std::pair<int, int>> candidates, Profile& profile,
+                         std::size_t grain = kGrainPair) const;
 
   // Whether pair p of a group is a moving and a static body and the moving
   // one's sphere (grown by grow[o] when grow is given) misses the static
@@ -197,9 +200,10 @@ struct Collider {
 
   // --- the narrowphase stage (core/collision/narrowphase_step.hpp) ---
 
-  // The narrowphase of a group's pairs into d (hits and their deepest depth).
+  // The narrowphase of a group's pairs into d (hits and their deepest
+  // depth), split across the run's threads in chunks of `grain`.
   void narrow(State& state, BodyIndices group, const std::vector<collision::Pose>& pose, const std::vector<std::pair<int, int>>& pairs,
-              Detection& d, Profile& profile, std::span<const double> margin = {}) const;
+              Detection& d, Profile& profile, std::span<const double> margin = {}, std::size_t grain = kGrainPair) const;
 
   // Whether a pair the world's detection found apart is farther apart than
   // both bodies can move in the step (then d.apart keeps it, and the

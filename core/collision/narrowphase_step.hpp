@@ -18,7 +18,8 @@ requires collision::NarrowphaseBody<NarrowBody>
 auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices group,
                                                    const std::vector<collision::Pose>& pose,
                                                    const std::vector<std::pair<int, int>>& pairs, Detection& d,
-                                                   Profile& profile, std::span<const double> margin) const -> void {
+                                                   Profile& profile, std::span<const double> margin,
+                                                   std::size_t grain) const -> void {
   ScopedStage timed(profile, Stage::narrowphase);
   const auto method = setup.settings.method == ContactMethod::report ? collision::Method::sat_then_report
                                                                      : collision::Method::sat_then_manifold;
@@ -66,7 +67,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   state.counters.narrowphase_pairs += slots.size();
   if (group.data() != setup.all_bodies.data()) state.counters.island_narrowphase_pairs += slots.size();
   // PairMemory::find on several threads at once: each writes only its own pair's entry.
-  const bool shared = runs_parallel(slots.size(), kGrainPair);
+  const bool shared = runs_parallel(slots.size(), grain);
   const bool report = method == collision::Method::sat_then_report;
   for_each_index(
       slots.size(),
@@ -103,7 +104,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
               !setup.meshes[w]->triangles().empty()) shape.triangle(0);
         }
       },
-      kGrainPair);
+      grain);
   // Whether a tested pair's contacts are kept (collision::keep, into its entry).
   const auto keeps = [&](const Slot& s) { return keep && !s.kept && s.choice.made && !s.h.features.empty(); };
   for_each_index(
@@ -135,7 +136,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
         if (!h.sat.intersect && h.features.empty() && !margin.empty())
           s.apart = apart_beyond_reach(state, group, pose, h, margin, s.face_tested, s.shapes);
       },
-      kGrainPair);
+      grain);
   for (Slot& s : slots) {
     state.counters.links_face_tested += s.face_tested;
     state.counters.narrowphase_shapes += s.shapes;

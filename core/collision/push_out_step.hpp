@@ -121,7 +121,7 @@ class PushOutStep {
       for (std::size_t k = 0; k < among.size(); ++k)
         if (bound[k] > tol) pairs.push_back(among[k]);
       if (pairs.empty()) return;
-      const Detection d = c_.detect_among(s_, a.model, ys, a.group, pairs, profile);
+      const Detection d = c_.detect_among(s_, a.model, ys, a.group, pairs, profile, kGrainPushOutPair);
       ++s_.counters.push_out_detections;
       for (const auto& [i, j] : pairs) bound[static_cast<std::size_t>(index(i, j))] = kUnmeasured;
       measure(d.gaps), measure(d.hits);
