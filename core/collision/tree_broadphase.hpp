@@ -1,7 +1,8 @@
 #pragma once
 // The broadphase by dynamic trees: persistent pairs over
-// fat volumes, one tree for the moving bodies and one for the static ones,
-// over either volume policy:
+// fat volumes, two trees for the moving bodies (those on either side of a
+// plane, so that their reinsertions run on two threads) and one for the
+// static ones, over either volume policy:
 //   AabbVolume           algebra-neutral boxes (core::Aabb) around each body's
 //                        bounding sphere: the practical baseline;
 //   SphereVolume<Ops>    the report's sphere trees (§4.2.2, fig. 13): leaves
@@ -19,8 +20,8 @@
 //      kFatMargin of its radius, a box also stretched along the body's last
 //      displacement: kLookAhead); only a body that left it is reinserted;
 //   2. the pairs of reinserted bodies are dropped and found again by querying
-//      the trees with their new fat volumes (a moving body: both trees; a
-//      static one: the moving tree only, so two static bodies are never a
+//      the trees with their new fat volumes (a moving body: every tree; a
+//      static one: the moving trees only, so two static bodies are never a
 //      pair). A pair of two bodies that stayed is kept: their fat volumes have
 //      not changed, so neither has their overlap. A still scene reinserts
 //      nothing and queries nothing;
@@ -39,6 +40,8 @@
 #include "core/parallel.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <concepts>
 #include <cstdint>
 #include <iterator>
@@ -166,8 +169,8 @@ class TreeBroadphase {
 
   // Forgets everything: the next update inserts every body afresh.
   void clear() {
-    moving_.clear(), fixed_.clear();
-    leaf_.clear(), kept_.clear(), is_static_.clear(), last_.clear();
+    for (Tree& t : trees_) t.clear();
+    leaf_.clear(), tree_.clear(), kept_.clear(), is_static_.clear(), last_.clear();
   }
 
   // Appends the pairs whose spheres overlap to `pairs` and, with margins, the
@@ -180,14 +183,16 @@ class TreeBroadphase {
     if (leaf_.size() != n) {
       clear();
       leaf_.assign(n, kNull);
+      tree_.assign(n, 0);
       is_static_.assign(b.is_static.begin(), b.is_static.end());
+      choose_plane(b);
     }
     // A body that became static or moving (it fell asleep or woke,
-    // core/collision/sleep.hpp) leaves its tree and is inserted in the other
+    // core/collision/sleep.hpp) leaves its tree and is inserted in another
     // below, its pairs found again like a moved body's.
     for (std::size_t i = 0; i < n; ++i) {
       if (is_static_[i] == b.is_static[i]) continue;
-      if (leaf_[i] != kNull) tree_of(i).remove(leaf_[i]), leaf_[i] = kNull;
+      if (leaf_[i] != kNull) trees_[tree_[i]].remove(leaf_[i]), leaf_[i] = kNull;
       is_static_[i] = b.is_static[i];
     }
     const bool growing = !b.margins.empty();
@@ -201,20 +206,31 @@ class TreeBroadphase {
     // builds the tree a test-then-reinsert pass over the bodies would.
     moved_.assign(n, 0);
     for_each_index(n, [&](std::size_t i) {
-      moved_[i] = leaf_[i] == kNull || !V::contains(tree_of(i).volume(leaf_[i]), tight(i));
+      moved_[i] = leaf_[i] == kNull || !V::contains(trees_[tree_[i]].volume(leaf_[i]), tight(i));
     }, kGrainLight);
-    bool any = false;
     if (last_.size() != n) last_.assign(b.centres.begin(), b.centres.end());
+    // Each tree's removals and insertions, in body order, then the three
+    // trees on the run's threads: a tree's own work touches only that tree
+    // and the leaves of the bodies inserted in it. Which tree holds a body
+    // changes the trees' shapes, never the pairs (a set).
+    for (std::size_t t = 0; t < trees_.size(); ++t) removals_[t].clear(), inserts_[t].clear();
     for (std::size_t i = 0; i < n; ++i) {
       if (!moved_[i]) continue;
-      Tree& tree = tree_of(i);
-      if (leaf_[i] != kNull) tree.remove(leaf_[i]);
-      auto fat = V::grown(tight(i), margin_ * b.radii[i]);
-      if constexpr (requires { V::swept(fat, Vec3()); }) fat = V::swept(fat, look_ahead_ * (b.centres[i] - last_[i]));
-      leaf_[i] = tree.insert(fat, static_cast<int>(i));
-      any = true;
+      if (leaf_[i] != kNull) removals_[tree_[i]].push_back(leaf_[i]);
+      tree_[i] = static_cast<char>(is_static_[i] ? kStaticTree : b.centres[i][axis_] < plane_ ? 0 : 1);
+      inserts_[tree_[i]].push_back(static_cast<int>(i));
       ++work.reinserted;
     }
+    for_each_index(trees_.size(), [&](std::size_t t) {
+      for (const int leaf : removals_[t]) trees_[t].remove(leaf);
+      for (const int body : inserts_[t]) {
+        const auto i = static_cast<std::size_t>(body);
+        auto fat = V::grown(tight(i), margin_ * b.radii[i]);
+        if constexpr (requires { V::swept(fat, Vec3()); }) fat = V::swept(fat, look_ahead_ * (b.centres[i] - last_[i]));
+        leaf_[i] = trees_[t].insert(fat, body);
+      }
+    }, 1);
+    const bool any = work.reinserted > 0;
     std::copy(b.centres.begin(), b.centres.end(), last_.begin());
     if (any) find_pairs_of_moved();
     work.kept = static_cast<std::int64_t>(kept_.size());
@@ -236,12 +252,9 @@ class TreeBroadphase {
     append_picked(candidates, kept_.size(), [&](std::size_t k) { return (verdict_[k] & 1) != 0; }, pair, kGrainLight);
     append_picked(pairs, kept_.size(), [&](std::size_t k) { return (verdict_[k] & 2) != 0; }, pair, kGrainLight);
     work.exact_tests = static_cast<std::int64_t>(kept_.size() + (candidates.size() - had));  // every kept pair grown, the candidates tight
-    work.volume_tests = moving_.take_volume_tests() + fixed_.take_volume_tests();
+    for (const Tree& t : trees_) work.volume_tests += t.take_volume_tests();
     return work;
   }
-
-  const DynamicTree<V>& moving_tree() const { return moving_; }
-  const DynamicTree<V>& static_tree() const { return fixed_; }
 
  private:
   using Tree = DynamicTree<V>;
@@ -249,7 +262,14 @@ class TreeBroadphase {
   static constexpr int kNull = Tree::kNull;
   double margin_;      // relative to each body's radius
   double look_ahead_;  // kLookAhead
-  Tree moving_, fixed_;
+  // The moving bodies' two trees (0: below the plane along axis_, 1: above
+  // it, by a body's centre when it is inserted) and the static bodies' one.
+  static constexpr std::size_t kStaticTree = 2;
+  std::array<Tree, 3> trees_;
+  int axis_ = 0;
+  double plane_ = 0;
+  std::array<std::vector<int>, 3> removals_, inserts_;  // update's, per tree
+  std::vector<char> tree_;   // body → the tree its leaf is in
   std::vector<int> leaf_;    // body → its leaf in its tree
   std::vector<Pair> kept_;   // the pairs whose fat volumes overlap, i < j, sorted
   std::vector<char> is_static_;
@@ -266,7 +286,23 @@ class TreeBroadphase {
   };
   std::vector<Block> blocks_;
 
-  Tree& tree_of(std::size_t i) { return is_static_[i] ? fixed_ : moving_; }
+  // The moving trees' plane, when the trees are built afresh: across the
+  // axis along which the moving bodies' centres spread most, at their mean,
+  // so that each tree holds about half of them (and of their reinsertions,
+  // where the bodies move alike). A body far from it is found in the other
+  // tree by a test of that tree's root.
+  void choose_plane(const BroadphaseBodies<Sphere>& b) {
+    Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY), sum = Vec3::Zero();
+    std::size_t moving = 0;
+    for (std::size_t i = 0; i < b.centres.size(); ++i) {
+      if (b.is_static[i]) continue;
+      lo = lo.cwiseMin(b.centres[i]), hi = hi.cwiseMax(b.centres[i]), sum += b.centres[i], ++moving;
+    }
+    axis_ = 0, plane_ = 0;
+    if (moving == 0) return;
+    (hi - lo).maxCoeff(&axis_);
+    plane_ = sum[axis_] / static_cast<double>(moving);
+  }
 
   // The kept pairs of two bodies that stayed are still right; every pair of a
   // moved body is dropped and found again by querying the trees with its new
@@ -303,9 +339,9 @@ class TreeBroadphase {
         const auto add = [&](int j) {
           if (j != me) block.found.emplace_back(std::min(me, j), std::max(me, j));
         };
-        const auto& fat = tree_of(i).volume(leaf_[i]);
-        block.tests += moving_.query(fat, block.stack, add);
-        if (!is_static_[i]) block.tests += fixed_.query(fat, block.stack, add);
+        const auto& fat = trees_[tree_[i]].volume(leaf_[i]);
+        block.tests += trees_[0].query(fat, block.stack, add) + trees_[1].query(fat, block.stack, add);
+        if (!is_static_[i]) block.tests += trees_[kStaticTree].query(fat, block.stack, add);
       }
     }, 1);
     fresh_.clear();
@@ -314,7 +350,7 @@ class TreeBroadphase {
       fresh_.insert(fresh_.end(), block.found.begin(), block.found.end());
       tests += block.tests;
     }
-    moving_.count_volume_tests(tests);  // both trees' tests are summed by the caller
+    trees_[0].count_volume_tests(tests);  // the trees' tests are summed by the caller
     sort_pairs(fresh_, leaf_.size());
     fresh_.erase(std::unique(fresh_.begin(), fresh_.end()), fresh_.end());
     merged_.clear();
