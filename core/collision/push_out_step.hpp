@@ -208,8 +208,8 @@ class PushOutStep {
   };
 
   // Every pair's bound raised by how far its two bodies moved from `from` to
-  // `to`, where only `bodies` (sorted) may have moved: the pairs of a body
-  // that did not keep their bounds (adding 0 would change none).
+  // `to`. Only `bodies` (sorted) may have moved, so only their pairs are
+  // raised: adding 0 to another pair's bound would change nothing.
   void raise(const Subsystem<Bodies>& a, std::vector<double>& bound, const Pairs& among, const Adjacency& adjacent,
              const std::vector<double>& from, const std::vector<double>& to, std::span<const int> bodies) const {
     const auto& setup = c_.setup;

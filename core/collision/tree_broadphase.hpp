@@ -202,8 +202,8 @@ class TreeBroadphase {
     };
     // Which bodies left their fat volumes, on the run's threads: a body's test
     // reads only its own leaf, which no other body's reinsertion changes (a
-    // leaf is never moved in place), so reinserting afterwards in body order
-    // builds the tree a test-then-reinsert pass over the bodies would.
+    // leaf is never moved in place), so testing every body before any is
+    // reinserted finds the bodies a test-then-reinsert pass would.
     moved_.assign(n, 0);
     for_each_index(n, [&](std::size_t i) {
       moved_[i] = leaf_[i] == kNull || !V::contains(trees_[tree_[i]].volume(leaf_[i]), tight(i));
