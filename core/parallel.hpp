@@ -47,7 +47,7 @@ inline constexpr std::size_t kGrainPair = 512;    // a pair's lookups, placing a
 // The push-out's detections (core/collision/push_out_step.hpp: a few dozen
 // pairs each, most of them in a pile) take a finer grain: left to kGrainPair
 // they all ran on one thread. On the 10,000-body box without a search (two
-// threads, four interleaved runs) 32 took the run from 23.7 s to 23.1 s. An
+// threads, three interleaved runs) 32 took the run from 23.6 s to 22.8 s. An
 // island's searched sub-steps keep kGrainPair: at 32 the searched
 // 1,000-body box went from 17.3 s to 18.0 s.
 inline constexpr std::size_t kGrainPushOutPair = 32;
