@@ -12,6 +12,7 @@
 #include "core/parallel.hpp"
 
 #include "long_tests.hpp"
+#include "scoped_threads.hpp"
 
 #include <gtest/gtest.h>
 
@@ -543,7 +544,6 @@ TYPED_TEST_P(CollisionStepCases, TwoThreadsGiveTheSameRunBitForBit) {
     SCOPED_TRACE(method == core::TimeOfImpact::none ? "time_of_impact none" : "bisection");
     for (auto& e : s.effects)
       if (auto* c = std::get_if<core::Collisions>(&e)) c->time_of_impact = method;
-    core::set_threads(1);
     const core::Run one = core::simulate<TypeParam>(s);
     ASSERT_FALSE(one.error) << *one.error;
     ASSERT_GT(one.counters.at("contacts"), 0u);
@@ -556,11 +556,10 @@ TYPED_TEST_P(CollisionStepCases, TwoThreadsGiveTheSameRunBitForBit) {
     // run split too.
     for (const bool fine : {false, true}) {
       SCOPED_TRACE(fine ? "fine grains" : "the stages' grains");
-      core::set_threads(2);
-      core::set_fine_grains(fine);
-      const core::Run two = core::simulate<TypeParam>(s);
-      core::set_threads(1);
-      core::set_fine_grains(false);
+      const core::Run two = [&] {
+        const ScopedThreads two_threads(2, fine);
+        return core::simulate<TypeParam>(s);
+      }();
       ASSERT_FALSE(two.error) << *two.error;
       ASSERT_EQ(one.samples.size(), two.samples.size());
       for (std::size_t k = 0; k < one.samples.size(); ++k)
@@ -921,8 +920,7 @@ TYPED_TEST_P(CollisionStepCases, TheDirectSolvesGroupsOnTwoThreadsGiveOneThreads
     core::CollisionCounters counters;
   };
   const auto respond_and_correct = [&](int threads, bool fine) {
-    core::set_threads(threads);
-    core::set_fine_grains(fine);
+    const ScopedThreads scoped(threads, fine);
     typename C::State state;
     core::Profile profile;
     Answer out{ys, {}};
@@ -930,8 +928,6 @@ TYPED_TEST_P(CollisionStepCases, TheDirectSolvesGroupsOnTwoThreadsGiveOneThreads
     c.respond(state, a.model, out.y, a.group, d.hits, box.step, profile);
     const core::Detection deep = c.detect_among(state, a.model, out.y, a.group, among, profile);
     c.push_out(state, a.model, out.y, a.group, deep.hits, profile);
-    core::set_threads(1);
-    core::set_fine_grains(false);
     out.counters = state.counters;
     return out;
   };

@@ -5,6 +5,7 @@
 #include "cga/bounding_volume.hpp"
 #include "core/collision/broadphase.hpp"
 #include "core/parallel.hpp"
+#include "../../scoped_threads.hpp"
 #include "traditional/bounding_volume.hpp"
 
 #include <gtest/gtest.h>
@@ -266,17 +267,15 @@ TYPED_TEST(Broadphases, EveryMethodGivesAllPairsAsBodiesMove) {
 // the pairs equal all pairs'.
 TYPED_TEST(Broadphases, TreesGiveTheSameAnswerOnTwoThreads) {
   using Ops = TypeParam;
-  struct Restore {
-    ~Restore() { set_threads(1), set_fine_grains(false); }
-  } restore;
   for (const auto method : {BroadphaseMethod::aabb_tree, BroadphaseMethod::sphere_tree}) {
     Broadphase<Ops> one(method), two(method);
     std::int64_t moved = 0;
     move_400_bodies([&](const Bodies& b, int step) {
-      set_threads(1), set_fine_grains(false);
       const BroadphaseResult r1 = one.find(b.centres, b.radii, b.is_static, b.margins);
-      set_threads(2), set_fine_grains(true);
-      const BroadphaseResult r2 = two.find(b.centres, b.radii, b.is_static, b.margins);
+      const BroadphaseResult r2 = [&] {
+        const gacompare::testing::ScopedThreads two_threads(2, true);
+        return two.find(b.centres, b.radii, b.is_static, b.margins);
+      }();
       const std::string where = std::string(name_of(method)) + " step " + std::to_string(step);
       ASSERT_EQ(r2.pairs, r1.pairs) << where;
       ASSERT_EQ(r2.candidates, r1.candidates) << where;
