@@ -109,6 +109,10 @@ struct CollisionState {
   // memory at every detection were a tenth of the serial part of its run.
   std::vector<NarrowSlot> slots;
   std::vector<std::pair<int, int>> tests;  // a detection's pairs to test, in slot order
+  // detect_among's poses and sphere centres of a group, kept between calls:
+  // only the entries of the bodies its candidates name are current.
+  std::vector<collision::Pose> among_pose;
+  std::vector<Vec3> among_centres;
 };
 
 // The collider works on a group of bodies: the whole world (the world's model
@@ -174,8 +178,8 @@ struct Collider {
 
   // The same for a group whose candidate pairs are known (an island within
   // its step: the pairs its bodies' grown spheres link, core/collision/collision_step.hpp):
-  // of those, the pairs whose own spheres overlap (in a frame at the group's
-  // mean position) and that reach a static body's box go to the narrowphase,
+  // of those, the pairs whose own spheres overlap (in a frame at the mean
+  // centre of the bodies the candidates name) and that reach a static body's box go to the narrowphase,
   // its pairs split across the run's threads in chunks of `grain`.
   Detection detect_among(State& state, const Model& m, std::span<const double> y, BodyIndices group,
                          std::span<const std::pair<int, int>> candidates, Profile& profile,
