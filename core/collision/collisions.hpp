@@ -77,6 +77,7 @@ struct NarrowSlot {
   collision::SatHint* hint_entry = nullptr;       // the pair's remembered axis, if it has one
   collision::KeptContacts* kept_entry = nullptr;  // its kept contacts, refused or not, if any
   bool apart = false, kept = false;
+  bool hold = false;  // its kept contacts wait (KeptContacts::wait): not kept after its test
   std::uint64_t face_tested = 0, shapes = 0;
 };
 

@@ -76,13 +76,19 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
         s = Slot{PairHit{tests[u].first, tests[u].second, {}, {}}, {}, {}};
         const int wa = group[s.h.a], wb = group[s.h.b];
         s.kept_entry = keep ? state.kept.find(wa, wb) : nullptr;
-        if (s.kept_entry && collision::refresh(*s.kept_entry, *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a],
-                                               pose[s.h.b],
-                                               collision::kTouchingBand *
-                                                   collision::pair_scale(*setup.meshes[wa], *setup.meshes[wb]),
-                                               s.h.sat, s.h.features)) {
-          s.kept = true;
-          return;
+        if (collision::KeptContacts* k = s.kept_entry) {
+          if (k->wait > 0) {
+            s.hold = --k->wait > 0;  // kept again after the test that ends the wait
+          } else if (collision::refresh(*k, *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a], pose[s.h.b],
+                                        collision::kTouchingBand *
+                                            collision::pair_scale(*setup.meshes[wa], *setup.meshes[wb]),
+                                        s.h.sat, s.h.features)) {
+            k->refused = 0;
+            s.kept = true;
+            return;
+          } else if (k->valid) {
+            s.hold = !collision::refuse(*k);
+          }
         }
         if (!reuse) return;
         s.hint_entry = state.hints.find(wa, wb);
@@ -125,7 +131,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
           h.sat = collision::narrowphase<NarrowBody>(sa, sb, method, &h.features, keep ? &s.hint : nullptr, choice);
         }
         const int wa = group[h.a], wb = group[h.b];
-        if (keeps(s) && s.kept_entry)
+        if (keeps(s) && s.kept_entry && !s.hold)
           collision::keep(*s.kept_entry, *setup.meshes[wa], *setup.meshes[wb], pose[h.a], pose[h.b], h.sat, s.hint,
                           s.choice, h.features);
         else if (s.kept_entry)
