@@ -85,7 +85,7 @@ struct KeptContacts {
   bool ref_is_a = true;  // the manifold's reference face is a's (else b's)
   bool sat_on_a = true;  // the separating-axis answer's face is a's (else b's)
   int count = 0;
-  int refused = 0;  // refreshes refused in a row, at most kKeepBackOff
+  int refused = 0;  // refreshes refused in a row, at most kKeepPatience + kKeepBackOff
   int wait = 0;     // detections left before the contacts are kept again
   Mat3 rotation = Mat3::Identity();  // b's orientation in a's frame at the full test
   Vec3 offset = Vec3::Zero();        // b's position in a's frame at the full test
@@ -159,10 +159,10 @@ inline bool keep(KeptContacts& k, const Mesh& ma, const Mesh& mb, const Pose& pa
   return true;
 }
 
-// A refresh refused (a valid entry whose bound failed): the detections to
-// wait before the pair's contacts are kept again (kKeepBackOff). Returns
-// whether this detection's full test is to keep them: only when there is no
-// wait.
+// A refresh refused (a valid entry whose bound or guards failed): counts it,
+// and sets the detections to wait before the pair's contacts are kept again
+// (none within kKeepPatience refusals in a row). Returns whether this
+// detection's full test is to keep them: only when there is no wait.
 inline bool refuse(KeptContacts& k) {
   k.refused = std::min(k.refused + 1, kKeepPatience + kKeepBackOff);
   k.wait = k.refused > kKeepPatience ? (1 << (k.refused - kKeepPatience)) - 1 : 0;
