@@ -976,6 +976,40 @@ TYPED_TEST_P(CollisionStepCases, AnElasticBounceKeepsItsEnergyOnlyWithASearch) {
   EXPECT_GT(rise(core::TimeOfImpact::none), 1e-3);
 }
 
+// Kept contacts after a slide (core/collision/kept_contacts.hpp): a 0.2 m
+// cube sliding at 0.3 m/s on a slab with friction 0.3 stops after about
+// 0.1 s (v/μg), its contacts refused at every detection meanwhile, more than
+// the patience in a row, so it waits. Once at rest it must be kept again
+// within the longest wait: of the 0.9 s after it stops (about 900
+// detections) at least 800 are kept ones (890 measured, against 897 before
+// the wait). With `reuse_contacts: false` none is, and both runs stop the
+// cube alike.
+TYPED_TEST_P(CollisionStepCases, ASlidingPairIsKeptAgainOnceAtRest) {
+  const auto scene = [](bool reuse) {
+    return core::parse_scene(
+        std::string(R"({"name": "slide", "duration": 1.0, "output": {"every": 0.05},
+            "solver": {"method": "rk4", "dt": 0.0005},
+            "effects": [{"type": "gravity", "g": [0, 0, -9.81]},
+                        {"type": "collisions", "restitution": 0, "penetration_tolerance": 1e-05, "step": 0.001,
+                         "reuse_contacts": )") +
+            (reuse ? "true" : "false") + R"(}],
+            "bodies": [{"name": "slab", "shape": {"box": [4, 4, 0.2]}, "mass": 100, "position": [0, 0, -0.1],
+                        "static": true, "friction": 0.3},
+                       {"name": "cube", "shape": {"box": [0.2, 0.2, 0.2]}, "mass": 1, "position": [0, 0, 0.1],
+                        "velocity": [0.3, 0, 0], "friction": 0.3}]})",
+        "slide.json");
+  };
+  const core::Run kept = core::simulate<TypeParam>(scene(true)), tested = core::simulate<TypeParam>(scene(false));
+  ASSERT_FALSE(kept.error) << *kept.error;
+  ASSERT_FALSE(tested.error) << *tested.error;
+  // At rest from 0.1 s on (v = 0.3 − μ g t reaches 0 at 0.102 s).
+  for (const core::Run* r : {&kept, &tested})
+    EXPECT_LT(r->samples.back().bodies[1].velocity.norm(), 1e-6);
+  EXPECT_GT(kept.counters.at("narrowphase_contacts_kept"), 800u);
+  EXPECT_EQ(tested.counters.at("narrowphase_contacts_kept"), 0u);
+  EXPECT_LT((kept.samples.back().bodies[1].position - tested.samples.back().bodies[1].position).norm(), 1e-6);
+}
+
 REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithinTheTolerance,
                             AnElasticBounceKeepsItsEnergyOnlyWithASearch,
                             CrowdedBoxWithoutASearchStaysWithinOneStepsTravel, TwoThreadsGiveTheSameRunBitForBit, FarApartIslandsGiveWhatEachGivesAlone,
@@ -986,6 +1020,6 @@ REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithin
                             TheTunnellingRuleReadsHowFastAPairCloses, AReachBoundsEveryPointsPathInAStep,
                             AReachBoundsThePathOfAPushedBody, ThePushOutsBoundsHoldEveryPairsDepth,
                             ThePushOutsDirectCorrectionMovesTheBodiesAsTheSweepsDo,
-                            TheDirectSolvesGroupsOnTwoThreadsGiveOneThreadsAnswer);
+                            TheDirectSolvesGroupsOnTwoThreadsGiveOneThreadsAnswer, ASlidingPairIsKeptAgainOnceAtRest);
 
 }  // namespace gacompare::testing
