@@ -44,6 +44,11 @@ bool in_item();
 // narrowphase alone at 0.6x.
 inline constexpr std::size_t kGrainLight = 8192;  // ~20 ns items: a body's pose, reach or forces, a box test
 inline constexpr std::size_t kGrainPair = 512;    // a pair's lookups, placing and narrowphase test, 200 ns and up
+// Loops over a world's bodies whose items cost some 20 to 100 ns (a body's
+// reach, its fat box test, its sphere placed in the broadphase's frame):
+// with kGrainLight a 10,000-body world's such loops, fewer than two chunks,
+// ran on one thread, each a share of the run's own thread.
+inline constexpr std::size_t kGrainBody = 2048;
 // The push-out's detections (core/collision/push_out_step.hpp: a few hundred
 // pairs each, about 800 in the 10,000-body box's pile, most of them in
 // contact) take a finer grain: left to kGrainPair, which splits from 1,024
@@ -105,6 +110,41 @@ void append_picked(std::vector<T>& out, std::size_t n, Pick&& pick, Item&& item,
     std::size_t w = at[b];
     for (std::size_t k = b * g; k < std::min(n, (b + 1) * g); ++k)
       if (pick(k)) out[w++] = item(k);
+  }, 1);
+}
+
+// out = std::merge(a, b) (stable: of equal items, a's first), its parts
+// merged on the run's threads: the longer list cut into chunks of `grain`
+// items, each chunk with the part of the other list that sorts among it
+// (found by a binary search), written where the two parts' starts add up
+// to. The same list for any number of threads.
+template <class T>
+void merge_sorted(const std::vector<T>& a, const std::vector<T>& b, std::vector<T>& out, std::size_t grain) {
+  const std::size_t n = a.size() + b.size();
+  out.resize(n);
+  if (!runs_parallel(n, grain) || a.empty() || b.empty()) {
+    std::merge(a.begin(), a.end(), b.begin(), b.end(), out.begin());
+    return;
+  }
+  const bool by_a = a.size() >= b.size();
+  const std::vector<T>& cut = by_a ? a : b;
+  const std::size_t parts = (cut.size() + grain_of(grain) - 1) / grain_of(grain);
+  // Part p: a[ia[p], ia[p + 1]) and b[ib[p], ib[p + 1]).
+  std::vector<std::size_t> ia(parts + 1), ib(parts + 1);
+  for (std::size_t p = 0; p <= parts; ++p) {
+    const std::size_t at = p * cut.size() / parts;
+    if (p == 0 || p == parts) {
+      ia[p] = p == 0 ? 0 : a.size(), ib[p] = p == 0 ? 0 : b.size();
+    } else if (by_a) {  // b's items equal to a[at] after it
+      ia[p] = at, ib[p] = static_cast<std::size_t>(std::lower_bound(b.begin(), b.end(), a[at]) - b.begin());
+    } else {  // a's items equal to b[at] before it
+      ib[p] = at, ia[p] = static_cast<std::size_t>(std::upper_bound(a.begin(), a.end(), b[at]) - a.begin());
+    }
+  }
+  for_each_index(parts, [&](std::size_t p) {
+    std::merge(a.begin() + static_cast<long>(ia[p]), a.begin() + static_cast<long>(ia[p + 1]),
+               b.begin() + static_cast<long>(ib[p]), b.begin() + static_cast<long>(ib[p + 1]),
+               out.begin() + static_cast<long>(ia[p] + ib[p]));
   }, 1);
 }
 

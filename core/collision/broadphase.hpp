@@ -32,6 +32,7 @@
 #include "core/collision/bounding_volume.hpp"
 #include "core/model/scene.hpp"
 #include "core/collision/tree_broadphase.hpp"
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -193,13 +194,23 @@ class Broadphase {
   TreeBroadphase<AabbVolume, Ops> aabb_;
   TreeBroadphase<SphereVolume<Ops>, Ops> spheres_tree_;
 
+  // The bodies' spheres in the frame, on the run's threads: on one, a
+  // 10,000-body world's were half a percent of its run's own thread.
   void place(std::span<const Vec3> centres, std::span<const double> radii, std::span<const double> margins) {
     const std::size_t n = centres.size();
     Vec3 mean = Vec3::Zero();
     for (const Vec3& c : centres) mean += c;
     if (n > 0) mean /= static_cast<double>(n);
+    // Each block's largest, then theirs: a maximum is exact in any order.
+    const std::size_t g = grain_of(kGrainBody), blocks = (n + g - 1) / g;
+    std::vector<double> most(blocks, 0.0);
+    for_each_index(blocks, [&](std::size_t b) {
+      double e = 0;
+      for (std::size_t i = b * g; i < std::min(n, (b + 1) * g); ++i) e = std::max(e, (centres[i] - mean).norm() + radii[i]);
+      most[b] = e;
+    }, 1);
     double extent = 0;
-    for (std::size_t i = 0; i < n; ++i) extent = std::max(extent, (centres[i] - mean).norm() + radii[i]);
+    for (const double e : most) extent = std::max(extent, e);
     if (frames_ == 0 || n != local_.size() || (mean - frame_).norm() > extent) {
       frame_ = mean;
       ++frames_;
@@ -207,16 +218,16 @@ class Broadphase {
       spheres_tree_.clear();
     }
     local_.resize(n);
-    spheres_.clear();
-    grown_.clear();
-    grown_radii_.clear();
-    for (std::size_t i = 0; i < n; ++i) {
+    spheres_.resize(n);
+    grown_.resize(margins.empty() ? 0 : n);
+    grown_radii_.resize(margins.empty() ? 0 : n);
+    for_each_index(n, [&](std::size_t i) {
       local_[i] = centres[i] - frame_;
-      spheres_.push_back(Ops::sphere(local_[i], radii[i]));
-      if (margins.empty()) continue;
-      grown_radii_.push_back(radii[i] + margins[i]);
-      grown_.push_back(Ops::sphere(local_[i], grown_radii_.back()));
-    }
+      spheres_[i] = Ops::sphere(local_[i], radii[i]);
+      if (margins.empty()) return;
+      grown_radii_[i] = radii[i] + margins[i];
+      grown_[i] = Ops::sphere(local_[i], grown_radii_[i]);
+    }, kGrainBody);
   }
 };
 

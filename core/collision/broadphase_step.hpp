@@ -14,7 +14,7 @@ requires collision::NarrowphaseBody<NarrowBody>
 auto Collider<Bodies, NarrowBody, Spheres>::poses(const Model& m, std::span<const double> y, BodyIndices group) const
     -> std::vector<collision::Pose> {
   std::vector<collision::Pose> out(group.size());
-  for_each_index(group.size(), [&](std::size_t k) { out[k] = Bodies::pose(m, y, k); }, kGrainLight);
+  for_each_index(group.size(), [&](std::size_t k) { out[k] = Bodies::pose(m, y, k); }, kGrainBody);
   return out;
 }
 
@@ -54,15 +54,16 @@ auto Collider<Bodies, NarrowBody, Spheres>::detect(State& state, const Model& m,
                                  : Broadphase<Spheres>(BroadphaseMethod::sweep).find(centres, radii, fixed, margin);
     pairs = std::move(found.pairs);
     d.candidates = std::move(found.candidates);
-    // Each pair's test on the run's threads (core/parallel.hpp), the erasing in order.
+    // Each pair's test on the run's threads (core/parallel.hpp), and the
+    // pairs left gathered in order there too.
     const auto drop_away = [&](std::vector<std::pair<int, int>>& list, std::span<const double> grow) {
       std::vector<char> away(list.size());
       for_each_index(
           list.size(), [&](std::size_t k) { away[k] = misses_static(pose, group, centres, list[k], grow); }, kGrainLight);
-      std::size_t kept = 0;
-      for (std::size_t k = 0; k < list.size(); ++k)
-        if (!away[k]) list[kept++] = list[k];
-      list.resize(kept);
+      std::vector<std::pair<int, int>> left;
+      append_picked(left, list.size(), [&](std::size_t k) { return !away[k]; }, [&](std::size_t k) { return list[k]; },
+                    kGrainLight);
+      list.swap(left);
     };
     drop_away(pairs, {});
     drop_away(d.candidates, margin);
@@ -144,7 +145,7 @@ requires collision::NarrowphaseBody<NarrowBody>
 auto Collider<Bodies, NarrowBody, Spheres>::sphere_centres(const std::vector<collision::Pose>& pose,
                                                            BodyIndices group) const -> std::vector<Vec3> {
   std::vector<Vec3> c(group.size());
-  for (std::size_t k = 0; k < group.size(); ++k) c[k] = pose[k].apply(setup.sphere_centre[group[k]]);
+  for_each_index(group.size(), [&](std::size_t k) { c[k] = pose[k].apply(setup.sphere_centre[group[k]]); }, kGrainBody);
   return c;
 }
 

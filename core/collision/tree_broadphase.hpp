@@ -207,7 +207,7 @@ class TreeBroadphase {
     moved_.assign(n, 0);
     for_each_index(n, [&](std::size_t i) {
       moved_[i] = leaf_[i] == kNull || !V::contains(trees_[tree_[i]].volume(leaf_[i]), tight(i));
-    }, kGrainLight);
+    }, kGrainBody);
     if (last_.size() != n) last_.assign(b.centres.begin(), b.centres.end());
     // Each tree's removals and insertions, in body order, then the three
     // trees on the run's threads: a tree's own work touches only that tree
@@ -353,8 +353,9 @@ class TreeBroadphase {
     trees_[0].count_volume_tests(tests);  // the trees' tests are summed by the caller
     sort_pairs(fresh_, leaf_.size());
     fresh_.erase(std::unique(fresh_.begin(), fresh_.end()), fresh_.end());
-    merged_.clear();
-    std::merge(stayed_.begin(), stayed_.end(), fresh_.begin(), fresh_.end(), std::back_inserter(merged_));
+    // On the run's threads: on one, through a back inserter, the merge of the
+    // 10,000-body box's some 143,000 pairs was 1.4 % of its run's own thread.
+    merge_sorted(stayed_, fresh_, merged_, kGrainLight);
     kept_.swap(merged_);
   }
 };

@@ -1,11 +1,14 @@
 // core/parallel.hpp: every index once, on any number of threads, and an
 // item's exception in the caller; append_picked gives the serial loop's list
-// (brute force) for any thread count, grain and list it appends to.
+// (brute force) for any thread count, grain and list it appends to, and
+// merge_sorted std::merge's, equal items in the same order.
 #include "core/parallel.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
+#include <utility>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -43,6 +46,37 @@ TEST_F(Parallel, AppendPickedGivesTheSerialListForAnyThreadCount) {
           if (pick(k)) expected.push_back(item(k));
         append_picked(got, n, pick, item, grain);
         ASSERT_EQ(got, expected) << "threads " << t << " n " << n << " grain " << grain;
+      }
+}
+
+// Stability is seen in the pairs' second members: equal keys with a's
+// second member 0 and b's 1 must come out a's first, as std::merge puts them.
+TEST_F(Parallel, MergeSortedGivesStdMergeForAnyThreadCountAndSplit) {
+  std::mt19937 random(29);
+  for (int t : {1, 2, 3})
+    for (const auto& [na, nb] : {std::pair{0, 100}, {100, 0}, {1, 1}, {50, 5000}, {5000, 50}, {3000, 3000}})
+      for (std::size_t grain : {1u, 7u, 256u}) {
+        set_threads(t);
+        std::uniform_int_distribution<int> key(0, (na + nb) / 4 + 1);  // many repeats within and across the lists
+        std::vector<std::pair<int, int>> a(static_cast<std::size_t>(na)), b(static_cast<std::size_t>(nb));
+        for (auto& x : a) x = {key(random), 0};
+        for (auto& x : b) x = {key(random), 1};
+        std::ranges::sort(a), std::ranges::sort(b);
+        std::vector<std::pair<int, int>> want(a.size() + b.size());
+        const auto by_key = [](const auto& x, const auto& y) { return x.first < y.first; };
+        std::merge(a.begin(), a.end(), b.begin(), b.end(), want.begin(), by_key);
+        // Merged by the key alone, as std::merge above: wrap the pairs so that < compares keys.
+        struct Key {
+          std::pair<int, int> p;
+          bool operator<(const Key& o) const { return p.first < o.p.first; }
+        };
+        std::vector<Key> ka, kb, kgot;
+        for (const auto& x : a) ka.push_back({x});
+        for (const auto& x : b) kb.push_back({x});
+        merge_sorted(ka, kb, kgot, grain);
+        ASSERT_EQ(kgot.size(), want.size());
+        for (std::size_t k = 0; k < want.size(); ++k)
+          ASSERT_EQ(kgot[k].p, want[k]) << "threads " << t << " sizes " << na << ", " << nb << " grain " << grain << " at " << k;
       }
 }
 
