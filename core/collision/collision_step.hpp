@@ -258,7 +258,7 @@ class CollisionStep {
   // world's pairs apart come in the order the narrowphase took them, the
   // broadphase's (sorted here only if not). The walk on the run's threads,
   // a block of candidates each, from where its first one is in `far`: on one,
-  // the 10,000-body box's some 245,000 candidates a step made it 1 % of the
+  // the 10,000-body box's some 15,000 candidates a step made it 1 % of the
   // run's own thread.
   void unlink_far(Detection& d) const {
     if (d.apart.empty()) return;

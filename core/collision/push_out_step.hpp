@@ -129,8 +129,8 @@ class PushOutStep {
     std::vector<std::size_t> tested;  // the pass's pairs' places in among
     std::vector<int> pushed_bodies;
     // The state before each correction, of the bodies it moves only (raise
-    // reads no other): copying the whole island's at every pass was half a
-    // percent of the 10,000-body box's run's own thread.
+    // reads no other): copying the whole island's at every pass was a
+    // quarter of a percent of the 10,000-body box's run's own thread.
     std::vector<double> pushed(ys.size());
     for (int pass = 0;; ++pass) {
       if (on_pass) on_pass(pass, among, bound, ys);
