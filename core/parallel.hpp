@@ -84,6 +84,17 @@ void for_each_index(std::size_t n, F&& f, std::size_t grain = 32) {
   });
 }
 
+// [0, n) cut into blocks of `grain` items (the last one shorter), and
+// f(b, begin, end) for every block b on the run's threads: for loops whose
+// blocks each fill a slot of their own (a count, a maximum, a list), to be
+// combined in block order afterwards.
+inline std::size_t blocks_of(std::size_t n, std::size_t grain) { return (n + grain_of(grain) - 1) / grain_of(grain); }
+template <class F>
+void for_each_block(std::size_t n, std::size_t grain, F&& f) {
+  const std::size_t g = grain_of(grain);
+  for_each_index(blocks_of(n, grain), [&](std::size_t b) { f(b, b * g, std::min(n, (b + 1) * g)); }, 1);
+}
+
 // Appends item(k) to `out` for every k in [0, n) with pick(k), in index
 // order: the same list for any number of threads. On several, each block of
 // `grain` items counts its picks, a running sum of the counts (on this
@@ -96,21 +107,21 @@ void append_picked(std::vector<T>& out, std::size_t n, Pick&& pick, Item&& item,
       if (pick(k)) out.push_back(item(k));
     return;
   }
-  const std::size_t g = grain_of(grain), blocks = (n + g - 1) / g;
+  const std::size_t blocks = blocks_of(n, grain);
   std::vector<std::size_t> at(blocks + 1, 0);
-  for_each_index(blocks, [&](std::size_t b) {
+  for_each_block(n, grain, [&](std::size_t b, std::size_t begin, std::size_t end) {
     std::size_t c = 0;
-    for (std::size_t k = b * g; k < std::min(n, (b + 1) * g); ++k) c += pick(k) ? 1 : 0;
+    for (std::size_t k = begin; k < end; ++k) c += pick(k) ? 1 : 0;
     at[b + 1] = c;
-  }, 1);
+  });
   at[0] = out.size();
   for (std::size_t b = 0; b < blocks; ++b) at[b + 1] += at[b];
   out.resize(at[blocks]);
-  for_each_index(blocks, [&](std::size_t b) {
+  for_each_block(n, grain, [&](std::size_t b, std::size_t begin, std::size_t end) {
     std::size_t w = at[b];
-    for (std::size_t k = b * g; k < std::min(n, (b + 1) * g); ++k)
+    for (std::size_t k = begin; k < end; ++k)
       if (pick(k)) out[w++] = item(k);
-  }, 1);
+  });
 }
 
 // out = std::merge(a, b) (stable: of equal items, a's first), its parts
@@ -128,7 +139,7 @@ void merge_sorted(const std::vector<T>& a, const std::vector<T>& b, std::vector<
   }
   const bool by_a = a.size() >= b.size();
   const std::vector<T>& cut = by_a ? a : b;
-  const std::size_t parts = (cut.size() + grain_of(grain) - 1) / grain_of(grain);
+  const std::size_t parts = blocks_of(cut.size(), grain);
   // Part p: a[ia[p], ia[p + 1]) and b[ib[p], ib[p + 1]).
   std::vector<std::size_t> ia(parts + 1), ib(parts + 1);
   for (std::size_t p = 0; p <= parts; ++p) {

@@ -202,13 +202,10 @@ class Broadphase {
     for (const Vec3& c : centres) mean += c;
     if (n > 0) mean /= static_cast<double>(n);
     // Each block's largest, then theirs: a maximum is exact in any order.
-    const std::size_t g = grain_of(kGrainBody), blocks = (n + g - 1) / g;
-    std::vector<double> most(blocks, 0.0);
-    for_each_index(blocks, [&](std::size_t b) {
-      double e = 0;
-      for (std::size_t i = b * g; i < std::min(n, (b + 1) * g); ++i) e = std::max(e, (centres[i] - mean).norm() + radii[i]);
-      most[b] = e;
-    }, 1);
+    std::vector<double> most(blocks_of(n, kGrainBody), 0.0);
+    for_each_block(n, kGrainBody, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) most[b] = std::max(most[b], (centres[i] - mean).norm() + radii[i]);
+    });
     double extent = 0;
     for (const double e : most) extent = std::max(extent, e);
     if (frames_ == 0 || n != local_.size() || (mean - frame_).norm() > extent) {

@@ -266,15 +266,15 @@ class CollisionStep {
     if (!std::is_sorted(far.begin(), far.end())) std::sort(far.begin(), far.end());
     s_.counters.links_apart += far.size();
     const std::vector<std::pair<int, int>>& all = d.candidates;
-    const std::size_t n = all.size(), g = grain_of(kGrainLight), blocks = (n + g - 1) / g;
+    const std::size_t n = all.size();
     std::vector<char> apart(n);
-    for_each_index(blocks, [&](std::size_t b) {
-      auto next = std::lower_bound(far.begin(), far.end(), all[b * g]);
-      for (std::size_t k = b * g; k < std::min(n, (b + 1) * g); ++k) {
+    for_each_block(n, kGrainLight, [&](std::size_t, std::size_t begin, std::size_t end) {
+      auto next = std::lower_bound(far.begin(), far.end(), all[begin]);
+      for (std::size_t k = begin; k < end; ++k) {
         while (next != far.end() && *next < all[k]) ++next;
         apart[k] = next != far.end() && *next == all[k];
       }
-    }, 1);
+    });
     std::vector<std::pair<int, int>> linked;
     append_picked(linked, n, [&](std::size_t k) { return !apart[k]; }, [&](std::size_t k) { return all[k]; }, kGrainLight);
     d.candidates.swap(linked);

@@ -163,12 +163,11 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   };
   // Blocks of kGrainBody slots (a few nanoseconds each here): a push-out's
   // few hundred pairs stay on this thread.
-  const std::size_t g = grain_of(kGrainBody), blocks = (slots.size() + g - 1) / g;
+  const std::size_t blocks = blocks_of(slots.size(), kGrainBody);
   std::vector<Block> block(blocks);
-  const auto range = [&](std::size_t b) { return std::pair(b * g, std::min(slots.size(), (b + 1) * g)); };
-  for_each_index(blocks, [&](std::size_t b) {
+  for_each_block(slots.size(), kGrainBody, [&](std::size_t b, std::size_t begin, std::size_t end) {
     Block& k = block[b];
-    for (auto [u, end] = range(b); u < end; ++u) {
+    for (std::size_t u = begin; u < end; ++u) {
       const Slot& s = slots[u];
       k.face_tested += s.face_tested, k.shapes += s.shapes;
       if (s.kept) ++k.kept;
@@ -177,7 +176,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
       if (apart(s)) ++k.gaps, k.far += s.apart;
       else ++k.hits, k.deepest = std::max(k.deepest, s.h.sat.depth);
     }
-  }, 1);
+  });
   std::size_t hits = d.hits.size(), gaps = d.gaps.size(), far = d.apart.size();
   std::vector<std::array<std::size_t, 3>> at(blocks);
   for (std::size_t b = 0; b < blocks; ++b) {
@@ -199,9 +198,9 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
     }
   }
   d.hits.resize(hits), d.gaps.resize(gaps), d.apart.resize(far);
-  for_each_index(blocks, [&](std::size_t b) {
+  for_each_block(slots.size(), kGrainBody, [&](std::size_t b, std::size_t begin, std::size_t end) {
     auto [h, gap, a] = at[b];
-    for (auto [u, end] = range(b); u < end; ++u) {
+    for (std::size_t u = begin; u < end; ++u) {
       Slot& s = slots[u];
       if (!apart(s)) {
         d.hits[h++] = std::move(s.h);
@@ -210,7 +209,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
       if (s.apart) d.apart[a++] = {s.h.a, s.h.b};
       d.gaps[gap++] = {s.h.a, s.h.b, s.h.sat.depth};
     }
-  }, 1);
+  });
 }
 
 template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
