@@ -97,7 +97,9 @@ auto Collider<Bodies, NarrowBody, Spheres>::detect_among(State& state, const Mod
     std::vector<int> bodies;
     for (std::size_t k = 0; k < n; ++k)
       if (named[k]) bodies.push_back(static_cast<int>(k));
-    pose.resize(n), centres.resize(n);
+    // Grown only: a push-out's island of thousands after a small island's
+    // detection default-constructed all its poses again.
+    if (pose.size() < n) pose.resize(n), centres.resize(n);
     for_each_index(
         bodies.size(),
         [&](std::size_t u) {

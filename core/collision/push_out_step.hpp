@@ -44,12 +44,14 @@
 // hundred of its 29,000 pairs.
 #include "core/collision/collisions.hpp"
 #include "core/collision/subsystem.hpp"
+#include "core/parallel.hpp"
 #include "core/stage.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <span>
 #include <vector>
@@ -88,11 +90,11 @@ class PushOutStep {
     const double tol = c_.setup.settings.penetration_tolerance;
     // A pair's place in `among`, or −1. The lists looked up come in pair
     // order (a detection's hits and gaps follow its pairs), so each search
-    // gallops on from the last place found: a step or two per pair, where a
-    // binary search over a pile's 29,000 pairs missed the cache at each of
-    // its fifteen steps. Any order gives the same places.
-    std::size_t last = 0;
-    const auto index = [&](int i, int j) -> long {
+    // gallops on from the last place found (`last`, one per block of a
+    // list): a step or two per pair, where a binary search over a pile's
+    // 29,000 pairs missed the cache at each of its fifteen steps. Any order
+    // gives the same places.
+    const auto index = [&](int i, int j, std::size_t& last) -> long {
       const std::pair key(std::min(i, j), std::max(i, j));
       std::size_t lo = 0, hi = among.size();
       if (last < among.size() && !(key < among[last])) {
@@ -113,9 +115,16 @@ class PushOutStep {
     // Each pair's depth at most; NaN until measured, then the pairs left
     // unmeasured get their bounding spheres' bound (apart_by_spheres).
     std::vector<double> bound(among.size(), kUnmeasured);
+    // On the run's threads, a block of the list each: a list names each
+    // pair once (a detection's hits and gaps do), so no two items write
+    // the same bound.
     const auto measure = [&](const auto& list) {
-      for (const auto& x : list)
-        if (const auto k = index(x.a, x.b); k >= 0) bound[static_cast<std::size_t>(k)] = depth_bound(measured_depth(x));
+      for_each_block(list.size(), kGrainBody, [&](std::size_t, std::size_t begin, std::size_t end) {
+        std::size_t last = 0;
+        for (std::size_t q = begin; q < end; ++q)
+          if (const auto k = index(list[q].a, list[q].b, last); k >= 0)
+            bound[static_cast<std::size_t>(k)] = depth_bound(measured_depth(list[q]));
+      });
     };
     measure(gaps), measure(hits);
     std::vector<std::size_t> everywhere(among.size());
@@ -130,18 +139,22 @@ class PushOutStep {
     std::vector<int> pushed_bodies;
     // The state before each correction, of the bodies it moves only (raise
     // reads no other): copying the whole island's at every pass was a
-    // quarter of a percent of the 10,000-body box's run's own thread.
-    std::vector<double> pushed(ys.size());
+    // quarter of a percent of the 10,000-body box's run's own thread, and
+    // zeroing it once per push-out (a std::vector of its size) another
+    // quarter. Left uninitialised: only the pushed bodies' entries are read.
+    const std::unique_ptr<double[]> pushed_state(new double[ys.size()]);
+    const std::span<const double> pushed(pushed_state.get(), ys.size());
     for (int pass = 0;; ++pass) {
       if (on_pass) on_pass(pass, among, bound, ys);
-      pairs.clear();
-      for (std::size_t k = 0; k < among.size(); ++k)
-        if (bound[k] > tol) pairs.push_back(among[k]);
-      if (pairs.empty()) return;
+      tested.clear();
+      append_picked(tested, among.size(), [&](std::size_t k) { return bound[k] > tol; }, [](std::size_t k) { return k; },
+                    kGrainLight);
+      if (tested.empty()) return;
+      pairs.resize(tested.size());
+      for_each_index(tested.size(), [&](std::size_t q) { pairs[q] = among[tested[q]], bound[tested[q]] = kUnmeasured; },
+                     kGrainLight);
       const Detection d = c_.detect_among(s_, a.model, ys, a.group, pairs, profile, kGrainPushOutPair);
       ++s_.counters.push_out_detections;
-      tested.clear();
-      for (const auto& [i, j] : pairs) tested.push_back(static_cast<std::size_t>(index(i, j))), bound[tested.back()] = kUnmeasured;
       measure(d.gaps), measure(d.hits);
       // Only a pair just tested can be unmeasured now.
       apart_by_spheres(a, ys, among, bound, tested);
@@ -153,8 +166,8 @@ class PushOutStep {
       std::ranges::sort(pushed_bodies);
       pushed_bodies.erase(std::unique(pushed_bodies.begin(), pushed_bodies.end()), pushed_bodies.end());
       for (const int b : pushed_bodies) {
-        const auto at = static_cast<long>(static_cast<std::size_t>(b) * a.stride);
-        std::copy(ys.begin() + at, ys.begin() + at + static_cast<long>(a.stride), pushed.begin() + at);
+        const auto at = static_cast<std::size_t>(b) * a.stride;
+        std::copy_n(ys.begin() + static_cast<long>(at), a.stride, pushed_state.get() + at);
       }
       c_.push_out(s_, a.model, ys, a.group, d.hits, profile);
       check(ys);
@@ -184,19 +197,23 @@ class PushOutStep {
     };
     const auto left =
         static_cast<std::size_t>(std::ranges::count_if(where, [&](std::size_t q) { return std::isnan(bound[q]); }));
+    if (left == 0) return;
     std::vector<Vec3> all;
-    if (left >= a.group.size())
-      for (std::size_t k = 0; k < a.group.size(); ++k) all.push_back(centre(static_cast<int>(k)));
-    for (const std::size_t q : where) {
-      if (left == 0) break;
-      if (!std::isnan(bound[q])) continue;
+    if (left >= a.group.size()) {
+      all.resize(a.group.size());
+      for_each_index(a.group.size(), [&](std::size_t k) { all[k] = centre(static_cast<int>(k)); }, kGrainBody);
+    }
+    // Each place once in `where`: no two items write the same bound.
+    for_each_index(where.size(), [&](std::size_t u) {
+      const std::size_t q = where[u];
+      if (!std::isnan(bound[q])) return;
       const auto [i, j] = among[q];
       const Vec3 ci = all.empty() ? centre(i) : all[static_cast<std::size_t>(i)];
       const Vec3 cj = all.empty() ? centre(j) : all[static_cast<std::size_t>(j)];
       // Rounding of the centres and the sum, ~1e-15 of them, errs towards testing.
       const double r = setup.sphere_radius[world(a, i)] + setup.sphere_radius[world(a, j)];
       bound[q] = std::min(0.0, r - (ci - cj).norm() + 1e-12 * (r + ci.norm() + cj.norm()));
-    }
+    }, kGrainBody);
   }
   static std::size_t world(const Subsystem<Bodies>& a, int k) {
     return static_cast<std::size_t>(a.group[static_cast<std::size_t>(k)]);
@@ -219,14 +236,14 @@ class PushOutStep {
   // raised: adding 0 to another pair's bound would change nothing; and
   // `from` need hold only their states.
   void raise(const Subsystem<Bodies>& a, std::vector<double>& bound, const Pairs& among, const Adjacency& adjacent,
-             const std::vector<double>& from, const std::vector<double>& to, std::span<const int> bodies) const {
+             std::span<const double> from, const std::vector<double>& to, std::span<const int> bodies) const {
     const auto& setup = c_.setup;
     std::vector<double> moved(a.group.size(), 0.0);
-    for (const int b : bodies) {
-      const auto k = static_cast<std::size_t>(b);
+    for_each_index(bodies.size(), [&](std::size_t u) {
+      const auto k = static_cast<std::size_t>(bodies[u]);
       if (std::equal(from.begin() + static_cast<long>(k * a.stride), from.begin() + static_cast<long>((k + 1) * a.stride),
                      to.begin() + static_cast<long>(k * a.stride)))
-        continue;  // untouched: most bodies of a large island
+        return;  // untouched: most bodies of a large island
       const collision::Pose p0 = Bodies::pose(a.model, from, k), p1 = Bodies::pose(a.model, to, k);
       const Vec3& c = setup.sphere_centre[static_cast<std::size_t>(a.group[k])];
       // A margin for the rounding of the poses and of the sum (far below the
@@ -235,18 +252,19 @@ class PushOutStep {
                   setup.sphere_radius[static_cast<std::size_t>(a.group[k])] * (p1.rotation - p0.rotation).norm()) *
                      (1 + 1e-9) +
                  1e-15;
-    }
-    // Each pair once: from its first body that moved.
-    for (const int b : bodies) {
-      const auto k = static_cast<std::size_t>(b);
-      if (moved[k] == 0) continue;
-      for (std::size_t u = adjacent.first[k]; u < adjacent.first[k + 1]; ++u) {
-        const std::size_t q = adjacent.pairs[u];
+    }, kGrainBody);
+    // Each pair once: from the lower-numbered of its bodies that moved, so
+    // no two bodies' items write the same bound.
+    for_each_index(bodies.size(), [&](std::size_t u) {
+      const auto k = static_cast<std::size_t>(bodies[u]);
+      if (moved[k] == 0) return;
+      for (std::size_t v = adjacent.first[k]; v < adjacent.first[k + 1]; ++v) {
+        const std::size_t q = adjacent.pairs[v];
         const auto i = static_cast<std::size_t>(among[q].first), j = static_cast<std::size_t>(among[q].second);
         if ((i == k ? moved[j] : moved[i]) != 0 && (i == k ? j : i) < k) continue;  // done from the other body
         bound[q] += moved[i] + moved[j];
       }
-    }
+    }, kGrainBody);
   }
 
   const C& c_;

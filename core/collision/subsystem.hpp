@@ -3,6 +3,7 @@
 // bodies of the pairs a time-of-impact search re-integrates.
 #include "core/dynamics/ode.hpp"
 #include "core/model/scene.hpp"
+#include "core/parallel.hpp"
 #include "core/stage.hpp"
 
 #include <algorithm>
@@ -35,13 +36,15 @@ struct Subsystem {
   Subsystem& operator=(const Subsystem&) = delete;
   std::vector<double> gather(std::span<const double> y) const {
     std::vector<double> out(group.size() * stride);
-    for (std::size_t k = 0; k < group.size(); ++k)
+    for_each_index(group.size(), [&](std::size_t k) {
       std::copy_n(y.begin() + static_cast<long>(group[k] * stride), stride, out.begin() + static_cast<long>(k * stride));
+    }, kGrainBody);
     return out;
   }
   void scatter(const std::vector<double>& ys, std::span<double> y) const {
-    for (std::size_t k = 0; k < group.size(); ++k)
+    for_each_index(group.size(), [&](std::size_t k) {
       std::copy_n(ys.begin() + static_cast<long>(k * stride), stride, y.begin() + static_cast<long>(group[k] * stride));
+    }, kGrainBody);
   }
   // Integrates ys from t to t_end (the island's forces are timed as `forces`
   // in `profile`, like the world's; a Lie-group method evaluates them inside

@@ -346,13 +346,29 @@ class ContactSolver {
       return lines;
     }
     // Each moving slot's lines, in line order, with the sign of their impulse
-    // on it (−1 on a line's first body, +1 on its second).
-    static std::vector<std::vector<std::pair<std::size_t, double>>> lines_at(const std::vector<Line>& lines, std::size_t slots,
-                                                                              const std::vector<char>& moving) {
-      std::vector<std::vector<std::pair<std::size_t, double>>> at(slots);
+    // on it (−1 on a line's first body, +1 on its second): slot s's are
+    // items[first[s], first[s + 1]), one list for all (a vector per slot was
+    // an allocation per body of a pile's island at every solve).
+    struct LinesAt {
+      std::vector<std::size_t> first;
+      std::vector<std::pair<std::size_t, double>> items;
+      std::span<const std::pair<std::size_t, double>> operator[](std::size_t s) const {
+        return {items.data() + first[s], items.data() + first[s + 1]};
+      }
+    };
+    static LinesAt lines_at(const std::vector<Line>& lines, std::size_t slots, const std::vector<char>& moving) {
+      LinesAt at;
+      at.first.assign(slots + 1, 0);
+      for (const Line& l : lines) {
+        if (moving[l.sa]) ++at.first[l.sa + 1];
+        if (moving[l.sb]) ++at.first[l.sb + 1];
+      }
+      for (std::size_t s = 0; s < slots; ++s) at.first[s + 1] += at.first[s];
+      at.items.resize(at.first[slots]);
+      std::vector<std::size_t> next(at.first.begin(), at.first.end() - 1);
       for (std::size_t k = 0; k < lines.size(); ++k) {
-        if (moving[lines[k].sa]) at[lines[k].sa].emplace_back(k, -1.0);
-        if (moving[lines[k].sb]) at[lines[k].sb].emplace_back(k, 1.0);
+        if (moving[lines[k].sa]) at.items[next[lines[k].sa]++] = {k, -1.0};
+        if (moving[lines[k].sb]) at.items[next[lines[k].sb]++] = {k, 1.0};
       }
       return at;
     }
@@ -382,33 +398,49 @@ class ContactSolver {
           out.emplace_back(static_cast<Eigen::Index>(i), si * Bodies::normal_velocity(unit, arm(lines[i], si), lines[i].dir));
       };
       const auto n = static_cast<Eigen::Index>(lines.size());
-      std::size_t most = 0;
-      for (const auto& l : at) most += l.size() * l.size();
+      const auto slot_lines = [&](std::size_t s) {
+        return moving[s] ? at[s] : std::span<const std::pair<std::size_t, double>>{};
+      };
+      // Column j's entries: the lines of its two bodies, merged by line.
+      // Counted first, so that the columns are then written on the run's
+      // threads, each where its count puts it (a pile's island has
+      // thousands of lines).
       Eigen::SparseMatrix<double> a(n, n);
-      a.resizeNonZeros(static_cast<Eigen::Index>(most));
-      Part pa, pb;
-      Eigen::Index nz = 0;
-      for (Eigen::Index j = 0; j < n; ++j) {
-        const Line& l = lines[static_cast<std::size_t>(j)];
-        a.outerIndexPtr()[j] = static_cast<int>(nz);
-        part(l.sa, static_cast<std::size_t>(j), -1.0, pa), part(l.sb, static_cast<std::size_t>(j), 1.0, pb);
-        const bool a_first = l.sa < l.sb;  // the parts summed in slot order
-        std::size_t u = 0, v = 0;
-        while (u < pa.size() || v < pb.size()) {
-          Eigen::Index i;
-          double x;
-          if (v == pb.size() || (u < pa.size() && pa[u].first < pb[v].first)) {
-            i = pa[u].first, x = pa[u].second, ++u;
-          } else if (u == pa.size() || pb[v].first < pa[u].first) {
-            i = pb[v].first, x = pb[v].second, ++v;
-          } else {
-            i = pa[u].first, x = a_first ? pa[u].second + pb[v].second : pb[v].second + pa[u].second, ++u, ++v;
-          }
-          a.innerIndexPtr()[nz] = static_cast<int>(i), a.valuePtr()[nz] = x, ++nz;
+      int* outer = a.outerIndexPtr();
+      outer[0] = 0;
+      for_each_index(lines.size(), [&](std::size_t j) {
+        const auto pa = slot_lines(lines[j].sa), pb = slot_lines(lines[j].sb);
+        std::size_t u = 0, v = 0, c = 0;
+        for (; u < pa.size() && v < pb.size(); ++c) {
+          const std::size_t i = std::min(pa[u].first, pb[v].first);
+          u += pa[u].first == i, v += pb[v].first == i;
         }
-      }
-      a.outerIndexPtr()[n] = static_cast<int>(nz);
-      a.resizeNonZeros(nz);
+        outer[j + 1] = static_cast<int>(c + (pa.size() - u) + (pb.size() - v));
+      }, kGrainPair);
+      for (Eigen::Index j = 0; j < n; ++j) outer[j + 1] += outer[j];
+      a.resizeNonZeros(outer[n]);
+      for_each_block(lines.size(), kGrainPair, [&](std::size_t, std::size_t begin, std::size_t end) {
+        Part pa, pb;
+        for (std::size_t j = begin; j < end; ++j) {
+          const Line& l = lines[j];
+          auto nz = static_cast<Eigen::Index>(outer[j]);
+          part(l.sa, j, -1.0, pa), part(l.sb, j, 1.0, pb);
+          const bool a_first = l.sa < l.sb;  // the parts summed in slot order
+          std::size_t u = 0, v = 0;
+          while (u < pa.size() || v < pb.size()) {
+            Eigen::Index i;
+            double x;
+            if (v == pb.size() || (u < pa.size() && pa[u].first < pb[v].first)) {
+              i = pa[u].first, x = pa[u].second, ++u;
+            } else if (u == pa.size() || pb[v].first < pa[u].first) {
+              i = pb[v].first, x = pb[v].second, ++v;
+            } else {
+              i = pa[u].first, x = a_first ? pa[u].second + pb[v].second : pb[v].second + pa[u].second, ++u, ++v;
+            }
+            a.innerIndexPtr()[nz] = static_cast<int>(i), a.valuePtr()[nz] = x, ++nz;
+          }
+        }
+      });
       return a;
     }
     // A's factor by body, A = G Gᵀ (contact::Blcp::G): slot s's part of A,
@@ -846,7 +878,7 @@ class ContactSolver {
         if (w > 0) Bodies::push(pseudo[l.slot], arm, along, by / w);  // a translation by `by`
       }
       counters.friction_lowerings += lower.size();
-      for (std::size_t k = 0; k < pseudo.size(); ++k) Bodies::displace(m, y, static_cast<std::size_t>(body_of[k]), pseudo[k]);
+      displace(m, y, body_of, pseudo);
     }
 
     // Positional correction by split impulse (pseudo-velocities, as Bullet's
@@ -913,10 +945,17 @@ class ContactSolver {
         direct(fix, none, pseudo, moves, 1e-9 * tol);  // well within the sweeps' tolerance, as the projection's
       }
       solve(fix, pseudo, 1e-6 * tol, counters.correction_cap_hits);  // m: a millionth of the tolerance, see above
-      for (std::size_t k = 0; k < pseudo.size(); ++k) Bodies::displace(m, y, static_cast<std::size_t>(body_of[k]), pseudo[k]);
+      displace(m, y, body_of, pseudo);
       for (std::size_t hi = 0; hi < correct.size(); ++hi) counters.corrections += correct[hi];
     }
 
+    // Each slot's body moved by its pseudo-motion: on the run's threads, each
+    // slot writing its own body's state.
+    static void displace(const Model& m, std::span<double> y, const std::vector<int>& body_of, const Motions& pseudo) {
+      for_each_index(pseudo.size(), [&](std::size_t k) {
+        Bodies::displace(m, y, static_cast<std::size_t>(body_of[k]), pseudo[k]);
+      }, kGrainBody);
+    }
     // Whether a projection would only lift resting pairs back to tol/4 as a
     // whole: no pair to correct, and each resting pair's points at one depth
     // (within kProjectSpread tol). The projection is what keeps a face's
@@ -1006,7 +1045,7 @@ class ContactSolver {
         ++counters.projections_refused;
         pseudo = project(std::vector<char>(fix.size(), 0));
       }
-      for (std::size_t k = 0; k < pseudo.size(); ++k) Bodies::displace(m, y, static_cast<std::size_t>(body_of[k]), pseudo[k]);
+      displace(m, y, body_of, pseudo);
       for (const char t : touched) counters.corrections += t;
     }
 
@@ -1036,28 +1075,51 @@ class ContactSolver {
           for (const int b : written) table[static_cast<std::size_t>(b)] = kNone;
         }
       };
+      // Slots in the order the hits first name their bodies, and each hit's
+      // first row, on this thread; the motions and rows, a few hundred
+      // nanoseconds each, on the run's threads (a pile's island has
+      // thousands), each into its own slot.
+      std::vector<std::size_t> sa(hits.size()), sb(hits.size()), first(hits.size() + 1, 0);
       {
         const Cleared cleared{slot_of, g.body_of};
         const auto slot = [&](int b) {
           std::size_t& s = slot_of[static_cast<std::size_t>(b)];
-          if (s == kNone)
-            s = g.motion.size(), g.motion.push_back(Bodies::motion(m, y, static_cast<std::size_t>(b))), g.body_of.push_back(b);
+          if (s == kNone) s = g.body_of.size(), g.body_of.push_back(b);
           return s;
         };
         for (std::size_t hi = 0; hi < hits.size(); ++hi) {
-          const auto& h = hits[hi];
-          const std::size_t sa = slot(h.a), sb = slot(h.b);
-          const Motion& ma = g.motion[sa];
-          const Motion& mb = g.motion[sb];
-          for (const auto& c : h.features) {
-            Row r{world[h.a], world[h.b], sa, sb, hi, c.normal, c.point - Bodies::position(ma), c.point - Bodies::position(mb),
-                  Bodies::arm(ma, c.point, c.normal), Bodies::arm(mb, c.point, c.normal), 0, 0, 0, 0, c.depth};
-            r.k = Bodies::inverse_effective_mass(ma, r.arm_a) + Bodies::inverse_effective_mass(mb, r.arm_b);
-            if (!(r.k > 0)) continue;
-            g.rows.push_back(r);
-            g.point.push_back(c.point);
-          }
+          sa[hi] = slot(hits[hi].a), sb[hi] = slot(hits[hi].b);
+          first[hi + 1] = first[hi] + hits[hi].features.size();
         }
+      }
+      g.motion.resize(g.body_of.size());
+      for_each_index(g.body_of.size(), [&](std::size_t s) {
+        g.motion[s] = Bodies::motion(m, y, static_cast<std::size_t>(g.body_of[s]));
+      }, kGrainBody);
+      g.rows.resize(first.back());
+      g.point.resize(first.back());
+      std::vector<char> kept(first.back());
+      for_each_index(hits.size(), [&](std::size_t hi) {
+        const auto& h = hits[hi];
+        const Motion& ma = g.motion[sa[hi]];
+        const Motion& mb = g.motion[sb[hi]];
+        for (std::size_t f = 0; f < h.features.size(); ++f) {
+          const auto& c = h.features[f];
+          Row& r = g.rows[first[hi] + f];
+          r = Row{world[h.a], world[h.b], sa[hi], sb[hi], hi, c.normal, c.point - Bodies::position(ma),
+                  c.point - Bodies::position(mb), Bodies::arm(ma, c.point, c.normal), Bodies::arm(mb, c.point, c.normal),
+                  0, 0, 0, 0, c.depth};
+          r.k = Bodies::inverse_effective_mass(ma, r.arm_a) + Bodies::inverse_effective_mass(mb, r.arm_b);
+          kept[first[hi] + f] = r.k > 0;
+          g.point[first[hi] + f] = c.point;
+        }
+      }, kGrainPair);
+      // A row with no effective mass (two static bodies' contact) is left out.
+      if (std::ranges::find(kept, char{0}) != kept.end()) {
+        std::size_t w = 0;
+        for (std::size_t k = 0; k < kept.size(); ++k)
+          if (kept[k]) g.rows[w] = g.rows[k], g.point[w] = g.point[k], ++w;
+        g.rows.resize(w), g.point.resize(w);
       }
       return g;
     }

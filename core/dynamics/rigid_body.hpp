@@ -6,6 +6,7 @@
 #include "core/collision/collision.hpp"
 #include "core/model/model.hpp"
 #include "core/model/scene.hpp"
+#include "core/parallel.hpp"
 #include "core/run.hpp"
 
 #include <Eigen/Core>
@@ -129,12 +130,14 @@ concept RigidBodies = RigidBodyDynamics<B> && PosedBodies<B> && ContactBodies<B>
 // sub-models hold the same bodies in the same order.
 template <class Model>
 void copy_bodies(const Model& from, std::span<const int> which, Model& to) {
-  to.names.reserve(which.size());
-  to.bodies.reserve(which.size());
-  for (const int b : which) {
-    to.names.push_back(from.names[static_cast<std::size_t>(b)]);
-    to.bodies.push_back(from.bodies[static_cast<std::size_t>(b)]);
-  }
+  // On the run's threads: a pile's island copies thousands of bodies at
+  // every response.
+  to.names.resize(which.size());
+  to.bodies.resize(which.size());
+  for_each_index(which.size(), [&](std::size_t k) {
+    to.names[k] = from.names[static_cast<std::size_t>(which[k])];
+    to.bodies[k] = from.bodies[static_cast<std::size_t>(which[k])];
+  }, kGrainBody);
   to.effects = from.effects;
   to.effects.pushes.clear();
   for (auto push : from.effects.pushes) {
