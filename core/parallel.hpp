@@ -17,6 +17,7 @@
 // caller alone: waking a worker costs more than a few items save.
 #include <algorithm>
 #include <cstddef>
+#include <span>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -121,6 +122,19 @@ void append_picked(std::vector<T>& out, std::size_t n, Pick&& pick, Item&& item,
     std::size_t w = at[b];
     for (std::size_t k = begin; k < end; ++k)
       if (pick(k)) out[w++] = item(k);
+  });
+}
+
+// to = from, copied in blocks on the run's threads: a 10,000-body world's
+// state (a megabyte) copied at every step was half a percent of the run's
+// own thread.
+inline constexpr std::size_t kGrainCopy = std::size_t{1} << 15;  // doubles: some 10 µs a block
+template <class T>
+void copy_on_threads(std::span<const T> from, std::vector<T>& to) {
+  to.resize(from.size());
+  for_each_block(from.size(), kGrainCopy, [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::copy(from.begin() + static_cast<std::ptrdiff_t>(begin), from.begin() + static_cast<std::ptrdiff_t>(end),
+              to.begin() + static_cast<std::ptrdiff_t>(begin));
   });
 }
 

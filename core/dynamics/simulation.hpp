@@ -117,7 +117,7 @@ struct Simulation {
             << " s is below the resolution of t (stage integrate)";
         throw run_error(msg.str());
       }
-      y0 = y;
+      copy_on_threads(std::span<const double>(y), y0);
       step.wake_pushed(t0, t1);
       if (state.sleep.any()) {
         // Sleeping bodies do not move: their derivative is zero and not

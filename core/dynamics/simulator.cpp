@@ -1,8 +1,12 @@
 #include "core/dynamics/simulator.hpp"
 
+#include "core/parallel.hpp"
+
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace gacompare::core {
 
@@ -10,13 +14,18 @@ std::string first_nonfinite(std::span<const double> y, std::size_t stride, const
                             std::string_view what) {
   // Every step checks the whole state, almost always finite: x·0 is 0 for a
   // finite x and NaN for any other, so four independent running sums (no
-  // branch per value, no chain through one sum) say whether to look further.
-  std::array<double, 4> sum{};
-  std::size_t k = 0;
-  for (; k + 4 <= y.size(); k += 4)
-    for (std::size_t i = 0; i < 4; ++i) sum[i] += y[k + i] * 0.0;
-  for (; k < y.size(); ++k) sum[0] += y[k] * 0.0;
-  if (sum[0] + sum[1] + sum[2] + sum[3] == 0.0) return "";
+  // branch per value, no chain through one sum) say whether to look further;
+  // a block of the state each on the run's threads.
+  std::vector<char> bad(blocks_of(y.size(), kGrainCopy), 0);
+  for_each_block(y.size(), kGrainCopy, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    std::array<double, 4> sum{};
+    std::size_t k = begin;
+    for (; k + 4 <= end; k += 4)
+      for (std::size_t i = 0; i < 4; ++i) sum[i] += y[k + i] * 0.0;
+    for (; k < end; ++k) sum[0] += y[k] * 0.0;
+    bad[b] = !(sum[0] + sum[1] + sum[2] + sum[3] == 0.0);
+  });
+  if (std::ranges::find(bad, char{1}) == bad.end()) return "";
   for (std::size_t k = 0; k < y.size(); ++k)
     if (!std::isfinite(y[k])) return std::string(what) + " '" + names[k / stride] + "'";
   return "";
