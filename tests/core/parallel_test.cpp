@@ -1,13 +1,15 @@
 // core/parallel.hpp: every index once, on any number of threads, and an
 // item's exception in the caller; append_picked gives the serial loop's list
 // (brute force) for any thread count, grain and list it appends to, and
-// merge_sorted std::merge's, equal items in the same order.
+// merge_sorted std::merge's, equal items in the same order; copy_on_threads
+// a plain copy.
 #include "core/parallel.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
+#include <span>
 #include <utility>
 #include <stdexcept>
 #include <thread>
@@ -78,6 +80,25 @@ TEST_F(Parallel, MergeSortedGivesStdMergeForAnyThreadCountAndSplit) {
         for (std::size_t k = 0; k < want.size(); ++k)
           ASSERT_EQ(kgot[k].p, want[k]) << "threads " << t << " sizes " << na << ", " << nb << " grain " << grain << " at " << k;
       }
+}
+
+// Every item copied to its own place, whatever the thread count and
+// however the blocks fall (fine grains cut them to 4 items), into a vector
+// longer or shorter than the source.
+TEST_F(Parallel, CopyOnThreadsGivesAPlainCopy) {
+  for (int t : {1, 2, 3})
+    for (const bool fine : {false, true})
+      for (const std::size_t n : {0u, 1u, 5u, 70000u}) {
+        set_threads(t), set_fine_grains(fine);
+        std::vector<double> from(n);
+        for (std::size_t k = 0; k < n; ++k) from[k] = 0.5 * static_cast<double>(k) - 3;
+        for (const std::size_t had : {std::size_t{0}, n + 9}) {
+          std::vector<double> to(had, -1.0);
+          copy_on_threads(std::span<const double>(from), to);
+          ASSERT_EQ(to, from) << "threads " << t << " fine " << fine << " n " << n << " had " << had;
+        }
+      }
+  set_fine_grains(false);
 }
 
 TEST_F(Parallel, ManyShortLoopsInARowNeitherLoseNorRepeatAnItem) {
