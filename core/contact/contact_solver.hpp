@@ -398,9 +398,6 @@ class ContactSolver {
           out.emplace_back(static_cast<Eigen::Index>(i), si * Bodies::normal_velocity(unit, arm(lines[i], si), lines[i].dir));
       };
       const auto n = static_cast<Eigen::Index>(lines.size());
-      const auto slot_lines = [&](std::size_t s) {
-        return moving[s] ? at[s] : std::span<const std::pair<std::size_t, double>>{};
-      };
       // Column j's entries: the lines of its two bodies, merged by line.
       // Counted first, so that the columns are then written on the run's
       // threads, each where its count puts it (a pile's island has
@@ -409,7 +406,7 @@ class ContactSolver {
       int* outer = a.outerIndexPtr();
       outer[0] = 0;
       for_each_index(lines.size(), [&](std::size_t j) {
-        const auto pa = slot_lines(lines[j].sa), pb = slot_lines(lines[j].sb);
+        const auto pa = at[lines[j].sa], pb = at[lines[j].sb];  // empty for a static slot
         std::size_t u = 0, v = 0, c = 0;
         for (; u < pa.size() && v < pb.size(); ++c) {
           const std::size_t i = std::min(pa[u].first, pb[v].first);
