@@ -99,6 +99,19 @@ TEST(Islands, MatchBruteForceComponentsOnRandomGraphs) {
     const std::vector<std::pair<int, int>> pairs(unique.begin(), unique.end());
     const auto islands = islands_of(n, is_static, pairs);
     EXPECT_EQ(members(islands), brute_force(n, is_static, pairs)) << "trial " << trial;
+    // The order the contact solves and the state hash depend on: islands by
+    // their smallest body, each one's moving bodies and then its static
+    // ones ascending, its pairs in candidate order.
+    for (std::size_t k = 0; k < islands.size(); ++k) {
+      const auto& is = islands[k];
+      const auto moving_end = is.bodies.begin() + static_cast<long>(is.moving);
+      EXPECT_TRUE(std::is_sorted(is.bodies.begin(), moving_end)) << "trial " << trial;
+      EXPECT_TRUE(std::is_sorted(moving_end, is.bodies.end())) << "trial " << trial;
+      EXPECT_TRUE(std::is_sorted(is.pairs.begin(), is.pairs.end())) << "trial " << trial;
+      if (k > 0) {
+        EXPECT_LT(islands[k - 1].bodies.front(), is.bodies.front()) << "trial " << trial;
+      }
+    }
     for (const auto& is : islands)
       for (const std::size_t k : is.pairs) {
         const auto [i, j] = pairs[k];
