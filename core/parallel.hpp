@@ -125,6 +125,15 @@ void append_picked(std::vector<T>& out, std::size_t n, Pick&& pick, Item&& item,
   });
 }
 
+// `list` without the items whose `drop` flag is set, the rest in order
+// (append_picked into a fresh list): the same list for any number of threads.
+template <class T>
+void erase_flagged(std::vector<T>& list, const std::vector<char>& drop, std::size_t grain) {
+  std::vector<T> left;
+  append_picked(left, list.size(), [&](std::size_t k) { return !drop[k]; }, [&](std::size_t k) { return list[k]; }, grain);
+  list.swap(left);
+}
+
 // to = from, copied in blocks on the run's threads: a 10,000-body world's
 // state (a megabyte) copied at every step was half a percent of the run's
 // own thread.

@@ -60,10 +60,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::detect(State& state, const Model& m,
       std::vector<char> away(list.size());
       for_each_index(
           list.size(), [&](std::size_t k) { away[k] = misses_static(pose, group, centres, list[k], grow); }, kGrainLight);
-      std::vector<std::pair<int, int>> left;
-      append_picked(left, list.size(), [&](std::size_t k) { return !away[k]; }, [&](std::size_t k) { return list[k]; },
-                    kGrainLight);
-      list.swap(left);
+      erase_flagged(list, away, kGrainLight);
     };
     drop_away(pairs, {});
     drop_away(d.candidates, margin);

@@ -275,9 +275,7 @@ class CollisionStep {
         apart[k] = next != far.end() && *next == all[k];
       }
     });
-    std::vector<std::pair<int, int>> linked;
-    append_picked(linked, n, [&](std::size_t k) { return !apart[k]; }, [&](std::size_t k) { return all[k]; }, kGrainLight);
-    d.candidates.swap(linked);
+    erase_flagged(d.candidates, apart, kGrainLight);
   }
 
   void fail_if_nonfinite(const Subsystem<Bodies>& a, const std::vector<double>& ys, const char* stage, double t) const {

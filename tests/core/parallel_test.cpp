@@ -1,8 +1,8 @@
 // core/parallel.hpp: every index once, on any number of threads, and an
 // item's exception in the caller; append_picked gives the serial loop's list
 // (brute force) for any thread count, grain and list it appends to, and
-// merge_sorted std::merge's, equal items in the same order; copy_on_threads
-// a plain copy.
+// merge_sorted std::merge's, equal items in the same order; erase_flagged
+// the unflagged items in order; copy_on_threads a plain copy.
 #include "core/parallel.hpp"
 
 #include <gtest/gtest.h>
@@ -80,6 +80,28 @@ TEST_F(Parallel, MergeSortedGivesStdMergeForAnyThreadCountAndSplit) {
         for (std::size_t k = 0; k < want.size(); ++k)
           ASSERT_EQ(kgot[k].p, want[k]) << "threads " << t << " sizes " << na << ", " << nb << " grain " << grain << " at " << k;
       }
+}
+
+// erase_flagged keeps exactly the unflagged items, in order (brute force),
+// for any thread count and block split.
+TEST_F(Parallel, EraseFlaggedKeepsTheRestInOrder) {
+  std::mt19937 random(7);
+  for (int t : {1, 2, 3})
+    for (const bool fine : {false, true})
+      for (const std::size_t n : {0u, 1u, 9u, 20000u}) {
+        set_threads(t), set_fine_grains(fine);
+        std::vector<int> list(n);
+        std::vector<char> drop(n);
+        std::vector<int> want;
+        for (std::size_t k = 0; k < n; ++k) {
+          list[k] = static_cast<int>(random() % 1000);
+          drop[k] = random() % 3 == 0;
+          if (!drop[k]) want.push_back(list[k]);
+        }
+        erase_flagged(list, drop, 256);
+        ASSERT_EQ(list, want) << "threads " << t << " fine " << fine << " n " << n;
+      }
+  set_fine_grains(false);
 }
 
 // Every item copied to its own place, whatever the thread count and
