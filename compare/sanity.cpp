@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 
@@ -105,6 +106,15 @@ double face_gap(const Posed& a, const Posed& b) {
 
 bool spheres_apart(const SceneFacts& w, const Posed& a, std::size_t ia, const Posed& b, std::size_t ib, double by) {
   return (a.c - b.c).norm() - w.radius[ia] - w.radius[ib] >= by;
+}
+
+// The step a run takes its contacts at, without a time of impact: Bullet's
+// fixed step, or our collision step where the scene asks for no search; 0 for
+// a run whose impacts are searched.
+double step_without_search(const SceneFacts& w, const core::Run& run) {
+  const auto fixed = run.metrics.find("bullet_fixed_step_s");
+  if (fixed != run.metrics.end()) return fixed->second;
+  return w.collisions->time_of_impact == core::TimeOfImpact::none ? w.collisions->step : 0.0;
 }
 
 bool applies(const SceneFacts& w, const core::Run& run) { return w.collisions && !run.error && !run.samples.empty(); }
@@ -207,9 +217,7 @@ CheckLine penetration(const SceneFacts& w, const core::Scene& scene, const core:
   // through (docs/collision-response.md, "Bullet as a whole-simulation reference").
   // Our backends with the scene's time_of_impact "none" take contacts the same
   // way, at the end of each collision step.
-  const auto fixed = run.metrics.find("bullet_fixed_step_s");
-  const bool unsearched = w.collisions->time_of_impact == core::TimeOfImpact::none;
-  const double step = fixed != run.metrics.end() ? fixed->second : unsearched ? w.collisions->step : 0.0;
+  const double step = step_without_search(w, run);
   std::vector<double> bound(w.mass.size(), kSanityDeepPenetration * w.tol);
   for (const auto& s : run.samples)
     for (std::size_t i = 0; i < bound.size() && i < s.bodies.size(); ++i)
@@ -259,6 +267,98 @@ CheckLine penetration(const SceneFacts& w, const core::Scene& scene, const core:
     note = "bound: 10 tolerances plus one step without a time of impact (" + num(step) +
            " s) at the body's highest speed";
   }
+  return line(scene, run, what, depth_at, bound_at, ok, note);
+}
+
+// ---- rule 6: moving bodies in each other ----------------------------------------
+
+// Pairs of dynamic bodies whose bounding spheres meet at one sample, each once
+// (i < j): a uniform grid of cell 2 r_max over the centres, so each body's
+// partners lie in its own cell and the 26 around it. A one-axis sweep would
+// not do: in a 20-layer pyramid each cube's x-interval holds a thousand others.
+template <class Visit>
+void touching_pairs(const SceneFacts& w, const std::vector<Posed>& posed, const std::vector<std::size_t>& moving,
+                    double cell, Visit&& visit) {
+  // Cells clamped to ±2^20 per axis: a body flung a million cells out shares a
+  // boundary cell with others there, which costs tests, not pairs.
+  constexpr long kSpan = 1L << 20;
+  const auto index = [&](double x) {
+    return std::clamp(static_cast<long>(std::floor(x / cell)), -kSpan + 2, kSpan - 2);
+  };
+  const auto key = [](long x, long y, long z) {
+    return (static_cast<std::uint64_t>(x + kSpan) << 42) | (static_cast<std::uint64_t>(y + kSpan) << 21) |
+           static_cast<std::uint64_t>(z + kSpan);
+  };
+  std::vector<std::pair<std::uint64_t, std::size_t>> cells;
+  cells.reserve(moving.size());
+  for (const std::size_t i : moving) {
+    const Vec3& c = posed[i].c;
+    cells.emplace_back(key(index(c.x()), index(c.y()), index(c.z())), i);
+  }
+  std::sort(cells.begin(), cells.end());
+  for (const std::size_t i : moving) {
+    const Vec3& c = posed[i].c;
+    const long x = index(c.x()), y = index(c.y()), z = index(c.z());
+    for (long dx = -1; dx <= 1; ++dx)
+      for (long dy = -1; dy <= 1; ++dy)
+        for (long dz = -1; dz <= 1; ++dz) {
+          const std::uint64_t k = key(x + dx, y + dy, z + dz);
+          auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(k, std::size_t{0}));
+          for (; it != cells.end() && it->first == k; ++it)
+            if (it->second > i && !spheres_apart(w, posed[i], i, posed[it->second], it->second, 0)) visit(i, it->second);
+        }
+  }
+}
+
+CheckLine overlap(const SceneFacts& w, const core::Scene& scene, const core::Run& run) {
+  const std::string what = "sanity: overlap of two moving bodies (m)";
+  std::vector<std::size_t> moving;
+  double r_max = 0;
+  for (std::size_t i = 0; i < w.is_static.size(); ++i)
+    if (!w.is_static[i]) moving.push_back(i), r_max = std::max(r_max, w.radius[i]);
+  if (moving.size() < 2) return info(scene, run, what, "not checked: fewer than two moving bodies");
+  // The bound of rule 2, for a pair: 10 tolerances, which a working collider
+  // never reaches (a contact is resolved to within one), plus, for a run
+  // without a time of impact, one step's travel at each body's highest speed,
+  // since such a run sees a contact only after the step that made it.
+  const double step = step_without_search(w, run);
+  std::vector<double> v_max(w.mass.size(), 0.0);
+  for (const auto& s : run.samples)
+    for (std::size_t i = 0; i < v_max.size() && i < s.bodies.size(); ++i)
+      v_max[i] = std::max(v_max[i], s.bodies[i].velocity.norm());
+  const double base = kSanityDeepPenetration * w.tol;
+  double depth_at = 0, bound_at = base, margin = -kInf, t_at = 0;
+  std::size_t first = 0, second = 0;
+  std::string lost;  // a body the grid cannot place: a non-finite position fails the rule
+  for (const auto& s : run.samples) {
+    const auto posed = pose_all(w, s);
+    for (const std::size_t i : moving)
+      if (i < posed.size() && !posed[i].c.allFinite() && lost.empty())
+        lost = scene.bodies[i].name + "'s position is not finite at t = " + num(s.t) + " s";
+    if (!lost.empty()) break;
+    if (posed.size() < w.is_static.size()) continue;
+    touching_pairs(w, posed, moving, 2 * r_max, [&](std::size_t i, std::size_t j) {
+      const double bound = base + step * (v_max[i] + v_max[j]);
+      // As in rule 2: −face_gap bounds two polyhedra's depth from above, so
+      // the exact depth is taken only where it could beat the worst so far.
+      const bool round = w.meshes[i]->is_round() || w.meshes[j]->is_round();
+      const double upper = round ? kInf : -face_gap(posed[i], posed[j]);
+      if (!(upper > 0 && upper - bound > margin)) return;
+      const collision::Placed a{w.meshes[i].get(), {posed[i].r, posed[i].c}}, b{w.meshes[j].get(), {posed[j].r, posed[j].c}};
+      double depth = collision::sat_reference(a, b).depth;
+      if (depth < 0) depth = 0;
+      if (depth - bound > margin || std::isnan(depth))
+        margin = depth - bound, depth_at = depth, bound_at = bound, t_at = s.t, first = i, second = j;
+    });
+  }
+  if (!lost.empty()) return line(scene, run, what, std::nan(""), base, false, lost);
+  const bool ok = !(depth_at > bound_at) && !std::isnan(depth_at);
+  std::string note;
+  if (depth_at > 0)
+    note = scene.bodies[first].name + " and " + scene.bodies[second].name + " overlap by " + num(depth_at) +
+           " m at t = " + num(t_at) + " s";
+  if (step > 0) note += std::string(note.empty() ? "" : "; ") + "bound: 10 tolerances plus one step without a time of impact (" +
+                        num(step) + " s) at each body's highest speed";
   return line(scene, run, what, depth_at, bound_at, ok, note);
 }
 
@@ -467,6 +567,13 @@ CheckLine resting_acceleration(const SceneFacts& w, const core::Scene& scene, co
 
 }  // namespace
 
+CheckLine overlap_check(const core::Scene& scene, const core::Run& run) {
+  const core::Model model = core::compile(scene);
+  const SceneFacts w = facts_of(scene, model);
+  if (!applies(w, run)) return info(scene, run, "sanity: overlap of two moving bodies (m)", "not checked: no collisions or no samples");
+  return overlap(w, scene, run);
+}
+
 CheckLine energy_rise_check(const core::Scene& scene, const core::Run& run) {
   const core::Model model = core::compile(scene);
   const SceneFacts w = facts_of(scene, model);
@@ -505,6 +612,7 @@ std::vector<CheckLine> sanity_checks(const core::Scene& scene, const core::Model
   for (auto& l : lateral_drift(w, scene, run)) out.push_back(std::move(l));
   out.push_back(unresolved(scene, run));
   out.push_back(resting_acceleration(w, scene, run));
+  out.push_back(overlap(w, scene, run));
   return out;
 }
 

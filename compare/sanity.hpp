@@ -1,5 +1,5 @@
 #pragma once
-// Physical sanity of a collision run: four rules that hold
+// Physical sanity of a collision run: six rules that hold
 // for any correct frictionless contact response, checked on the samples a run
 // wrote, whatever backend wrote them (traditional, cga, bullet). `check` fails
 // on them (exit 1); `compare` prints them as warnings in report.md / report.html.
@@ -29,6 +29,13 @@
 //     counter (contact points approaching faster than the resting speed before
 //     the response and still approaching after it) is 0. Absent (older runs,
 //     Bullet): "not measured", an info line.
+//  5. A body at rest does not keep speeding up (resting_acceleration_check).
+//  6. No two moving bodies sink into each other: at no sample do two dynamic
+//     bodies overlap by more than rule 2's bound (exact separating-axis depth),
+//     for a run without a time of impact 10 · tol + h · (|v_i|max + |v_j|max).
+//     A pile or stack whose contacts are not held apart (a heavy box sinking
+//     into a light one, a pile squeezed by its own weight) fails here while
+//     every wall stays clean.
 #include "compare/check.hpp"
 
 #include <vector>
@@ -44,7 +51,7 @@ inline constexpr double kSanityLevel = 1e-8;               // sin of the tilt be
 inline constexpr int kSanityRestWindow = 3;                // samples in a row at rest vertically
 inline constexpr double kSanityRestingSpeedRise = 1e-4;     // m/s over a second of rest, rising throughout
 
-// The four rules for one run of `scene` (generators expanded, as
+// The rules for one run of `scene` (generators expanded, as
 // SceneResult::scene); empty unless the scene lists `collisions` and the run
 // has samples and no error. One CheckLine per rule (two for rule 3: velocity
 // and displacement), `what` starting with "sanity:"; a rule that does not
@@ -89,6 +96,9 @@ CheckLine unresolved_impacts_check(const core::Scene& scene, const core::Run& ru
 // is slower than the resting speed, no body speeds up throughout it by more
 // than kSanityRestingSpeedRise.
 CheckLine resting_acceleration_check(const core::Scene& scene, const core::Run& run);
+// Rule 6: the deepest overlap of two dynamic bodies at any sample, against its
+// bound. A non-finite position fails it, naming the body.
+CheckLine overlap_check(const core::Scene& scene, const core::Run& run);
 
 // The failing lines, one sentence each ("traditional: energy rose ..."), for
 // report.md's warnings.

@@ -79,29 +79,34 @@ def run_size(args, n):
                                                           "push_out_left_deep")
                          if k in run.get("counters", {})},
         }
-    for backend, line in sanity(os.path.join(folder, "report.md")).items():
+    for backend, lines in sanity(os.path.join(folder, "report.md")).items():
         if backend in rows:
-            rows[backend]["penetration"] = line
+            rows[backend].update(lines)
     if done.returncode != 0:
         print(f"scale: N = {n}: gacompare exited {done.returncode}", file=sys.stderr)
     return rows
 
 
-PENETRATION = "sanity: penetration into a static body (m)"
+RULES = {"penetration": "sanity: penetration into a static body (m)",
+         "overlap": "sanity: overlap of two moving bodies (m)"}
 
 
 def sanity(report):
-    """Each backend's line of the report's penetration rule (compare/sanity.cpp):
-    the deepest any body went into a wall at a sample, its bound and the verdict.
-    A run whose bodies end steps inside the walls is wrong physics, however fast."""
+    """Each backend's lines of the report's two depth rules (compare/sanity.cpp):
+    the deepest any body went into a wall, and the deepest two moving bodies
+    went into each other, at a sample, each with its bound and verdict. A run
+    whose bodies end steps inside the walls or squeezed into each other is
+    wrong physics, however fast."""
     out = {}
     if not os.path.exists(report):
         return out
     for line in open(report):
         cols = [c.strip() for c in line.strip().strip("|").split("|")]
-        if len(cols) == 6 and cols[2] == PENETRATION:
-            verdict = cols[5].replace("**", "")
-            out[cols[1]] = {"value": cols[3], "bound": cols[4], "pass": verdict.startswith("pass"), "note": verdict}
+        for key, rule in RULES.items():
+            if len(cols) == 6 and cols[2] == rule:
+                verdict = cols[5].replace("**", "")
+                out.setdefault(cols[1], {})[key] = {"value": cols[3], "bound": cols[4], "pass": verdict.startswith("pass"),
+                                                    "note": verdict}
     return out
 
 
@@ -135,14 +140,18 @@ def table(args, sizes, data):
         out.append(f"- {b}: p = {p}" + (f" [{', '.join(steps)}]" if steps else ""))
     bound = ("ten penetration tolerances and one step's travel for every backend: none searches"
              if args.time_of_impact == "none" else "ten penetration tolerances; Bullet's adds one step's travel")
-    out += ["", f"Physical sanity: the deepest any body went into a wall at a sample (every {args.every:g} s), against the "
-            f"rule's bound ({bound}) — a run that fails it is wrong physics, and its time is no measure:", "",
-            "| N | " + " | ".join(f"{b} (m)" for b in backends) + " |", "|---:|" + "---:|" * len(backends)]
+    out += ["", f"Physical sanity at the samples (every {args.every:g} s): the deepest any body went into a wall, and "
+            f"the deepest two moving bodies went into each other, against the rules' bound ({bound}; for two bodies, "
+            "both bodies' travel) — a run that fails them is wrong physics, and its time is no measure:", "",
+            "| N | " + " | ".join(f"{b}: wall / bodies (m)" for b in backends) + " |", "|---:|" + "---:|" * len(backends)]
     for n in sizes:
         cells = []
         for b in backends:
-            x = data[n].get(b, {}).get("penetration")
-            cells.append("–" if not x else f"{x['value']}" + ("" if x["pass"] else f" **FAILS** (bound {x['bound']})"))
+            parts = []
+            for key in RULES:
+                x = data[n].get(b, {}).get(key)
+                parts.append("–" if not x else f"{x['value']}" + ("" if x["pass"] else f" **FAILS** (bound {x['bound']})"))
+            cells.append(" / ".join(parts))
         out.append(f"| {n} | " + " | ".join(cells) + " |")
     out += ["", "Share of stage time (" + ", ".join(STAGES) + "):", "",
             "| N | backend | " + " | ".join(STAGES) + " |", "|---:|---|" + "---:|" * len(STAGES)]

@@ -23,10 +23,12 @@ def series(ctx, name, args):
         return table, json.load(f)
 
 
-def penetration(rows, backends):
-    """Each backend's deepest wall sample as a headline cell, FAILS marked."""
-    return [f"{b} {rows[b]['penetration']['value']} m" + ("" if rows[b]["penetration"]["pass"] else " (FAILS)")
-            for b in backends if "penetration" in rows.get(b, {})]
+def penetration(rows, backends, rule="penetration"):
+    """Each backend's deepest sample of a depth rule (bench/scale/scale.py RULES:
+    into a wall, or two moving bodies into each other) as a headline cell,
+    FAILS marked."""
+    return [f"{b} {rows[b][rule]['value']} m" + ("" if rows[b][rule]["pass"] else " (FAILS)")
+            for b in backends if rule in rows.get(b, {})]
 
 
 def generate(ctx):
@@ -63,6 +65,12 @@ def generate(ctx):
         headline.append({"finding": f"{int(largest):,} bodies in a box: the deepest any body went into a wall "
                                     "(penetration tolerance 1e-4 m; the sanity rule allows ten)",
                          "value": ", ".join(deep), "anchor": "#bodies-in-a-box"})
+    squeezed = penetration(r, ("traditional", "cga", "bullet"), "overlap")
+    if squeezed:
+        headline.append({"finding": f"{int(largest):,} bodies in a box: the deepest two moving bodies went into each "
+                                    "other at a sample (the sanity rule allows ten tolerances; Bullet's also one step's "
+                                    "travel of both)",
+                         "value": ", ".join(squeezed), "anchor": "#bodies-in-a-box"})
     rn = data_none["results"].get(largest, {})
     ratio = lambda rows, b: rows[b]["per_simulated_second"] / rows["bullet"]["per_simulated_second"]
     cost = [f"{b} {ratio(r, b):.2f}× Bullet's time searched, {ratio(rn, b):.2f}× without"
@@ -73,6 +81,12 @@ def generate(ctx):
                                     "Bullet in its own run)",
                          "value": "; ".join(cost), "anchor": "#without-a-search"})
     deep_none = penetration(rn, ("traditional", "cga"))
+    squeezed_none = penetration(rn, ("traditional", "cga"), "overlap")
+    if squeezed_none:
+        headline.append({"finding": f"{int(largest):,} bodies in a box without a search: the deepest two moving "
+                                    "bodies went into each other at a sample (the rule allows ten tolerances and one "
+                                    "step's travel of both)",
+                         "value": ", ".join(squeezed_none), "anchor": "#without-a-search"})
     if deep_none:
         headline.append({"finding": f"{int(largest):,} bodies in a box without a search: the deepest any body went "
                                     "into a wall at a sample (the rule allows ten tolerances and one step's travel)",

@@ -7,12 +7,15 @@
 #include "compare/sanity.hpp"
 #include "core/dynamics/invariants.hpp"
 #include "core/dynamics/rigid_body.hpp"
+#include "core/collision/separating_axis.hpp"
+#include "core/model/model.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
+#include <random>
 #include <string>
 
 namespace {
@@ -94,8 +97,14 @@ TEST(Sanity, ACleanRunPassesEveryRule) {
   const auto scene = slab_scene();
   const auto run = make_run(scene, 1.0, [](std::size_t, double t) { return sliding(t); });
   const auto lines = compare::sanity_checks(scene, run);
-  ASSERT_EQ(lines.size(), 6u);
-  for (const auto& l : lines) EXPECT_TRUE(passes(l)) << l.what << ": " << l.note;
+  ASSERT_EQ(lines.size(), 7u);
+  for (const auto& l : lines)
+    if (l.what.rfind("sanity: overlap", 0) != 0) {
+      EXPECT_TRUE(passes(l)) << l.what << ": " << l.note;
+    }
+  // One moving body: nothing to overlap, said so rather than passed.
+  EXPECT_EQ(find(lines, "sanity: overlap").verdict, CheckLine::Verdict::info);
+  EXPECT_NE(find(lines, "sanity: overlap").note.find("fewer than two moving bodies"), std::string::npos);
   EXPECT_NEAR(find(lines, "sanity: penetration").value, 5e-5, 1e-12);
   EXPECT_NE(find(lines, "sanity: lateral drift").note.find("1 stretch"), std::string::npos);
   EXPECT_TRUE(compare::sanity_warnings(lines).empty());
@@ -409,6 +418,127 @@ TEST(Sanity, CheckFailsOnASanityRuleAndCarriesABulletRun) {
   EXPECT_NE(md.find("**WARNING, physical sanity:** traditional: energy rise"), std::string::npos) << md;
   EXPECT_NE(md.find("## Physical sanity"), std::string::npos);
   EXPECT_NE(md.find("| hand | bullet | sanity: unresolved impacts |"), std::string::npos);
+}
+
+// Rule 6. A heavy cube on a light one on the slab: resting 5e-5 m into each
+// other passes; sunk 5 mm (50 tolerances) from t = 0.4 s fails, naming both.
+core::Scene two_cube_stack() {
+  auto scene = slab_scene();
+  scene.bodies.push_back(box("heavy", {0.2, 0.2, 0.2}, 100, {0, 0, 0.3}));
+  return scene;
+}
+
+TEST(Sanity, AHeavyBoxSinkingIntoALightOneFails) {
+  const auto scene = two_cube_stack();
+  const auto stack = [](double sunk) {
+    return [sunk](std::size_t b, double t) {
+      const double z = b == 1 ? 0.1 - 5e-5 : 0.3 - 1e-4 - (t > 0.4 - 1e-9 ? sunk : 0.0);
+      return State{{0, 0, z}, {0, 0, 0}};
+    };
+  };
+  const CheckLine resting = compare::overlap_check(scene, make_run(scene, 1.0, stack(0)));
+  EXPECT_TRUE(passes(resting)) << resting.note;
+  EXPECT_NEAR(resting.value, 5e-5, 1e-12);
+  EXPECT_NEAR(resting.bound, 10 * kTol, 1e-15);
+  const CheckLine sunk = compare::overlap_check(scene, make_run(scene, 1.0, stack(5e-3)));
+  EXPECT_TRUE(fails(sunk)) << sunk.note;
+  EXPECT_NEAR(sunk.value, 5e-3 + 5e-5, 1e-12);
+  EXPECT_NE(sunk.note.find("cube and heavy overlap by"), std::string::npos) << sunk.note;
+  EXPECT_NE(sunk.note.find("at t = 0.4 s"), std::string::npos) << sunk.note;
+  // The whole rule set carries it: check and compare fail the run.
+  const auto lines = compare::sanity_checks(scene, make_run(scene, 1.0, stack(5e-3)));
+  EXPECT_TRUE(fails(find(lines, "sanity: overlap")));
+  EXPECT_EQ(compare::sanity_warnings(lines).size(), 1u);
+}
+
+// Without a time of impact the pair may overlap by one step's travel at both
+// bodies' highest speeds, no more.
+TEST(Sanity, AnOverlapWithoutASearchMayReachOneStepsTravelOfBoth) {
+  auto scene = two_cube_stack();
+  std::get<core::Collisions>(scene.effects[1]).time_of_impact = core::TimeOfImpact::none;
+  const auto closing = [](double sunk) {
+    return [sunk](std::size_t b, double) {
+      return b == 1 ? State{{0, 0, 0.1}, {0, 0, 1}} : State{{0, 0, 0.3 - sunk}, {0, 0, -3}};
+    };
+  };
+  const CheckLine l = compare::overlap_check(scene, make_run(scene, 0.1, closing(4e-3)));
+  EXPECT_TRUE(passes(l)) << l.note;
+  EXPECT_NEAR(l.bound, 10 * kTol + 1e-3 * (1 + 3), 1e-12);
+  EXPECT_NE(l.note.find("without a time of impact"), std::string::npos) << l.note;
+  EXPECT_TRUE(fails(compare::overlap_check(scene, make_run(scene, 0.1, closing(6e-3)))));
+}
+
+TEST(Sanity, ANonFinitePositionFailsTheOverlapRuleNamingTheBody) {
+  const auto scene = two_cube_stack();
+  const auto run = make_run(scene, 0.1, [](std::size_t b, double t) {
+    return State{{0, 0, b == 2 && t > 0.05 ? std::nan("") : 0.1 + 0.2 * (b - 1)}, {0, 0, 0}};
+  });
+  const CheckLine l = compare::overlap_check(scene, run);
+  EXPECT_TRUE(fails(l));
+  EXPECT_NE(l.note.find("heavy's position is not finite at t = 0.06 s"), std::string::npos) << l.note;
+}
+
+// The grid finds what every pair finds: 300 turned boxes of sizes 0.02 to
+// 0.3 m crowded into a 1.5 m cube, and a clump of three a billion metres out
+// (cells clamped there), against the exact depth of all 45,000 pairs.
+TEST(Sanity, TheOverlapRuleFindsTheDeepestPairAsBruteForceDoes) {
+  core::Scene scene = slab_scene();
+  scene.bodies.resize(1);
+  std::mt19937 rng(20261206);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec3> at;
+  for (int i = 0; i < 303; ++i) {
+    const Vec3 size(0.02 + 0.28 * u(rng), 0.02 + 0.28 * u(rng), 0.02 + 0.28 * u(rng));
+    const Vec3 x = i < 300 ? Vec3(1.5 * u(rng), 1.5 * u(rng), 1 + 1.5 * u(rng)) : Vec3(1e9 + 0.1 * (i - 300), 0, 5);
+    std::string name = "b";
+    name += std::to_string(i);  // (gcc 12 at -O3 warns falsely on "b" + std::to_string)
+    auto b = box(name, size, 1, x);
+    std::normal_distribution<double> n(0, 1);
+    const Eigen::Vector4d q = Eigen::Vector4d(n(rng), n(rng), n(rng), n(rng)).normalized();
+    b.orientation = q;
+    scene.bodies.push_back(b);
+    at.push_back(x);
+  }
+  const auto run = make_run(scene, 0.0, [&](std::size_t b, double) { return State{at[b - 1], {0, 0, 0}}; });
+  const core::Model model = core::compile(scene);
+  double deepest = 0, deepest_far = 0;
+  for (std::size_t i = 1; i < scene.bodies.size(); ++i)
+    for (std::size_t j = i + 1; j < scene.bodies.size(); ++j) {
+      const auto placed = [&](std::size_t k) {
+        return collision::Placed{model.bodies[k].mesh.get(),
+                                 {core::rotation_matrix(scene.bodies[k].orientation), run.samples[0].bodies[k].position}};
+      };
+      const double d = std::max(0.0, collision::sat_reference(placed(i), placed(j)).depth);
+      deepest = std::max(deepest, d);
+      if (i > 300) deepest_far = std::max(deepest_far, d);
+    }
+  ASSERT_GT(deepest, 0.05);  // crowded: the case has deep pairs to find
+  const CheckLine l = compare::overlap_check(scene, run);
+  EXPECT_TRUE(fails(l));
+  EXPECT_EQ(l.value, deepest);  // the same depth of the same pair, not a near one
+  // Far out alone: the clump's own deepest pair.
+  core::Scene far = scene;
+  far.bodies.erase(far.bodies.begin() + 1, far.bodies.begin() + 301);
+  at.erase(at.begin(), at.begin() + 300);
+  ASSERT_GT(deepest_far, 0);
+  EXPECT_EQ(compare::overlap_check(far, make_run(far, 0.0, [&](std::size_t b, double) { return State{at[b - 1], {0, 0, 0}}; })).value,
+            deepest_far);
+}
+
+// Two rods end to end, 1 cm into each other, their centres 0.99 m apart
+// (nearly the sum of their bounding radii, 1.02 m): the grid must still put
+// them in neighbouring cells, so its cell is the largest diameter, not less.
+TEST(Sanity, TwoLongBodiesTouchingAtTheirEndsAreFound) {
+  core::Scene scene = slab_scene();
+  scene.bodies.resize(1);
+  scene.bodies.push_back(box("left", {1, 0.1, 0.1}, 1, {0.3, 0, 1}));
+  scene.bodies.push_back(box("right", {1, 0.1, 0.1}, 1, {1.29, 0, 1}));
+  scene.bodies.push_back(box("pebble", {0.01, 0.01, 0.01}, 1, {0, 0.5, 1}));
+  const auto run = make_run(scene, 0.0, [&](std::size_t b, double) { return State{scene.bodies[b].position, {0, 0, 0}}; });
+  const CheckLine l = compare::overlap_check(scene, run);
+  EXPECT_TRUE(fails(l)) << l.note;
+  EXPECT_NEAR(l.value, 0.01, 1e-12);
+  EXPECT_NE(l.note.find("left and right"), std::string::npos) << l.note;
 }
 
 }  // namespace
