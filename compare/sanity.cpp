@@ -119,6 +119,39 @@ double step_without_search(const SceneFacts& w, const core::Run& run) {
 
 bool applies(const SceneFacts& w, const core::Run& run) { return w.collisions && !run.error && !run.samples.empty(); }
 
+// What a depth rule (2 and 6) reports. Each pair is judged against its own
+// bound; the line carries the pair furthest past its bound where one is, else
+// the deepest pair, with its bound. Bounds differ per body in a run without a
+// search (one step's travel at each body's top speed), and there the pair
+// closest to its bound can be a shallow one between slow bodies: reporting it
+// showed a 10,000-body pile as overlapping by 0 while two of its bodies were
+// 1.6 mm into each other.
+struct DeepestPair {
+  struct At {
+    double depth = 0, bound = 0, t = 0;
+    std::size_t i = 0, j = 0;
+  };
+  At deepest, worst;
+  double worst_margin = -kInf;  // the greatest depth − bound; NaN once a depth is
+  explicit DeepestPair(double base) { deepest.bound = worst.bound = base; }
+  // Whether a pair at most `upper` deep (−face_gap) could change the line.
+  bool matters(double upper, double bound) const {
+    return upper > 0 && (upper > deepest.depth || upper - bound > worst_margin);
+  }
+  void add(double depth, double bound, double t, std::size_t i, std::size_t j) {
+    if (std::isnan(worst_margin)) return;
+    if (std::isnan(depth)) {
+      worst_margin = depth, worst = {depth, bound, t, i, j};
+      return;
+    }
+    depth = std::max(depth, 0.0);  // apart along an axis the faces missed: no overlap
+    if (depth > deepest.depth) deepest = {depth, bound, t, i, j};
+    if (depth - bound > worst_margin) worst_margin = depth - bound, worst = {depth, bound, t, i, j};
+  }
+  bool failed() const { return !(worst_margin <= 0); }
+  const At& reported() const { return failed() ? worst : deepest; }
+};
+
 CheckLine line(const core::Scene& scene, const core::Run& run, const std::string& what, double value, double bound,
                bool ok, std::string note) {
   return {scene.name, run.backend, what, value, bound, ok ? CheckLine::Verdict::pass : CheckLine::Verdict::fail,
@@ -222,9 +255,7 @@ CheckLine penetration(const SceneFacts& w, const core::Scene& scene, const core:
   for (const auto& s : run.samples)
     for (std::size_t i = 0; i < bound.size() && i < s.bodies.size(); ++i)
       bound[i] = std::max(bound[i], kSanityDeepPenetration * w.tol + step * s.bodies[i].velocity.norm());
-  // The pair closest to (or furthest past) its bound; depth 0 until one touches.
-  double depth_at = 0, bound_at = kSanityDeepPenetration * w.tol, margin = -kInf, t_at = 0;
-  std::size_t body = 0, wall = 0;
+  DeepestPair found(kSanityDeepPenetration * w.tol);  // i the body, j the wall
   std::string inside;  // the first centre of mass found inside a static body
   std::vector<std::size_t> statics;  // once: a scene of 10,000 bodies has six walls, not 10,000
   for (std::size_t j = 0; j < w.is_static.size(); ++j)
@@ -245,29 +276,27 @@ CheckLine penetration(const SceneFacts& w, const core::Scene& scene, const core:
         // depth is always taken.
         const bool round = w.meshes[i]->is_round() || w.meshes[j]->is_round();
         const double upper = round ? kInf : -face_gap(posed[j], posed[i]);
-        if (!centre_in && !(upper > 0 && upper - bound[i] > margin)) continue;
+        if (!centre_in && !found.matters(upper, bound[i])) continue;
         const collision::Placed a{w.meshes[j].get(), {posed[j].r, posed[j].c}}, b{w.meshes[i].get(), {posed[i].r, posed[i].c}};
-        double depth = collision::sat_reference(a, b).depth;
-        if (depth < 0) depth = 0;  // apart along an edge × edge axis the faces missed: no penetration
-        if (depth - bound[i] > margin || std::isnan(depth))
-          margin = depth - bound[i], depth_at = depth, bound_at = bound[i], t_at = s.t, body = i, wall = j;
+        found.add(collision::sat_reference(a, b).depth, bound[i], s.t, i, j);
         if (centre_in && inside.empty())
           inside = scene.bodies[i].name + "'s centre of mass is inside " + scene.bodies[j].name + " at t = " + num(s.t) +
                    " s";
       }
     }
   }
-  const bool ok = !(depth_at > bound_at) && !std::isnan(depth_at) && inside.empty();
+  const bool ok = !found.failed() && inside.empty();
+  const auto& at = found.reported();
   std::string note;
   if (!ok) {
-    note = scene.bodies[body].name + " is " + num(depth_at) + " m deep in " + scene.bodies[wall].name + " at t = " +
-           num(t_at) + " s";
+    note = scene.bodies[at.i].name + " is " + num(at.depth) + " m deep in " + scene.bodies[at.j].name + " at t = " +
+           num(at.t) + " s";
     if (!inside.empty()) note += "; " + inside;
   } else if (step > 0) {
     note = "bound: 10 tolerances plus one step without a time of impact (" + num(step) +
            " s) at the body's highest speed";
   }
-  return line(scene, run, what, depth_at, bound_at, ok, note);
+  return line(scene, run, what, at.depth, at.bound, ok, note);
 }
 
 // ---- rule 6: moving bodies in each other ----------------------------------------
@@ -327,8 +356,7 @@ CheckLine overlap(const SceneFacts& w, const core::Scene& scene, const core::Run
     for (std::size_t i = 0; i < v_max.size() && i < s.bodies.size(); ++i)
       v_max[i] = std::max(v_max[i], s.bodies[i].velocity.norm());
   const double base = kSanityDeepPenetration * w.tol;
-  double depth_at = 0, bound_at = base, margin = -kInf, t_at = 0;
-  std::size_t first = 0, second = 0;
+  DeepestPair found(base);
   std::string lost;  // a body the grid cannot place: a non-finite position fails the rule
   for (const auto& s : run.samples) {
     const auto posed = pose_all(w, s);
@@ -340,26 +368,24 @@ CheckLine overlap(const SceneFacts& w, const core::Scene& scene, const core::Run
     touching_pairs(w, posed, moving, 2 * r_max, [&](std::size_t i, std::size_t j) {
       const double bound = base + step * (v_max[i] + v_max[j]);
       // As in rule 2: −face_gap bounds two polyhedra's depth from above, so
-      // the exact depth is taken only where it could beat the worst so far.
+      // the exact depth is taken only where it could change the line.
       const bool round = w.meshes[i]->is_round() || w.meshes[j]->is_round();
       const double upper = round ? kInf : -face_gap(posed[i], posed[j]);
-      if (!(upper > 0 && upper - bound > margin)) return;
+      if (!found.matters(upper, bound)) return;
       const collision::Placed a{w.meshes[i].get(), {posed[i].r, posed[i].c}}, b{w.meshes[j].get(), {posed[j].r, posed[j].c}};
-      double depth = collision::sat_reference(a, b).depth;
-      if (depth < 0) depth = 0;
-      if (depth - bound > margin || std::isnan(depth))
-        margin = depth - bound, depth_at = depth, bound_at = bound, t_at = s.t, first = i, second = j;
+      found.add(collision::sat_reference(a, b).depth, bound, s.t, i, j);
     });
   }
   if (!lost.empty()) return line(scene, run, what, std::nan(""), base, false, lost);
-  const bool ok = !(depth_at > bound_at) && !std::isnan(depth_at);
+  const bool ok = !found.failed();
+  const auto& at = found.reported();
   std::string note;
-  if (depth_at > 0)
-    note = scene.bodies[first].name + " and " + scene.bodies[second].name + " overlap by " + num(depth_at) +
-           " m at t = " + num(t_at) + " s";
+  if (at.depth > 0 || !ok)
+    note = scene.bodies[at.i].name + " and " + scene.bodies[at.j].name + " overlap by " + num(at.depth) + " m at t = " +
+           num(at.t) + " s";
   if (step > 0) note += std::string(note.empty() ? "" : "; ") + "bound: 10 tolerances plus one step without a time of impact (" +
                         num(step) + " s) at each body's highest speed";
-  return line(scene, run, what, depth_at, bound_at, ok, note);
+  return line(scene, run, what, at.depth, at.bound, ok, note);
 }
 
 // ---- rule 3: sideways drift at rest (sanity.hpp states the rule) --------------

@@ -541,4 +541,33 @@ TEST(Sanity, TwoLongBodiesTouchingAtTheirEndsAreFound) {
   EXPECT_NE(l.note.find("left and right"), std::string::npos) << l.note;
 }
 
+// With bounds that differ per body (no search: each body's top speed), the
+// line still reports the deepest pair, not the one closest to its bound: a
+// shallow resting pair of slow bodies is nearer its bound than a pair of fast
+// ones 4 mm into each other, and reporting it read as "overlap 5e-05 m".
+// The same for the walls: a fast body 3 mm into the slab, a slow one 5e-5 m.
+TEST(Sanity, WithBoundsPerBodyTheDeepestPairIsReported) {
+  auto scene = two_cube_stack();
+  std::get<core::Collisions>(scene.effects[1]).time_of_impact = core::TimeOfImpact::none;
+  scene.bodies.push_back(box("low", {0.2, 0.2, 0.2}, 1, {0.6, 0, 0.1}));
+  scene.bodies.push_back(box("high", {0.2, 0.2, 0.2}, 1, {0.6, 0, 0.3}));
+  const auto run = make_run(scene, 0.1, [](std::size_t b, double) {
+    switch (b) {
+      case 1: return State{{0, 0, 0.1 - 3e-3}, {0, 0, -3}};   // fast, 3 mm into the slab
+      case 2: return State{{0, 0, 0.3 - 7e-3}, {0, 0, -3}};   // fast, 4 mm into the cube
+      case 3: return State{{0.6, 0, 0.1 - 5e-5}, {0, 0, 0}};  // slow, 5e-5 m into the slab
+      default: return State{{0.6, 0, 0.3 - 1e-4}, {0, 0, 0}}; // slow, 5e-5 m into low
+    }
+  });
+  const CheckLine pair = compare::overlap_check(scene, run);
+  EXPECT_TRUE(passes(pair)) << pair.note;
+  EXPECT_NEAR(pair.value, 4e-3, 1e-12);
+  EXPECT_NEAR(pair.bound, 10 * kTol + 1e-3 * (3 + 3), 1e-12);
+  EXPECT_NE(pair.note.find("cube and heavy overlap by"), std::string::npos) << pair.note;
+  const CheckLine wall = compare::penetration_check(scene, run);
+  EXPECT_TRUE(passes(wall)) << wall.note;
+  EXPECT_NEAR(wall.value, 3e-3, 1e-12);
+  EXPECT_NEAR(wall.bound, 10 * kTol + 1e-3 * 3, 1e-12);
+}
+
 }  // namespace
