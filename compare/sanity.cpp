@@ -117,6 +117,15 @@ double step_without_search(const SceneFacts& w, const core::Run& run) {
   return w.collisions->time_of_impact == core::TimeOfImpact::none ? w.collisions->step : 0.0;
 }
 
+// Each body's highest speed over the run's samples: with the step above, the
+// travel a run without a search may end a step with (rules 2 and 6).
+std::vector<double> top_speeds(const SceneFacts& w, const core::Run& run) {
+  std::vector<double> v(w.mass.size(), 0.0);
+  for (const auto& s : run.samples)
+    for (std::size_t i = 0; i < v.size() && i < s.bodies.size(); ++i) v[i] = std::max(v[i], s.bodies[i].velocity.norm());
+  return v;
+}
+
 bool applies(const SceneFacts& w, const core::Run& run) { return w.collisions && !run.error && !run.samples.empty(); }
 
 // What a depth rule (2 and 6) reports. Each pair is judged against its own
@@ -251,10 +260,8 @@ CheckLine penetration(const SceneFacts& w, const core::Scene& scene, const core:
   // Our backends with the scene's time_of_impact "none" take contacts the same
   // way, at the end of each collision step.
   const double step = step_without_search(w, run);
-  std::vector<double> bound(w.mass.size(), kSanityDeepPenetration * w.tol);
-  for (const auto& s : run.samples)
-    for (std::size_t i = 0; i < bound.size() && i < s.bodies.size(); ++i)
-      bound[i] = std::max(bound[i], kSanityDeepPenetration * w.tol + step * s.bodies[i].velocity.norm());
+  std::vector<double> bound = top_speeds(w, run);
+  for (double& b : bound) b = kSanityDeepPenetration * w.tol + step * b;
   DeepestPair found(kSanityDeepPenetration * w.tol);  // i the body, j the wall
   std::string inside;  // the first centre of mass found inside a static body
   std::vector<std::size_t> statics;  // once: a scene of 10,000 bodies has six walls, not 10,000
@@ -351,20 +358,23 @@ CheckLine overlap(const SceneFacts& w, const core::Scene& scene, const core::Run
   // without a time of impact, one step's travel at each body's highest speed,
   // since such a run sees a contact only after the step that made it.
   const double step = step_without_search(w, run);
-  std::vector<double> v_max(w.mass.size(), 0.0);
-  for (const auto& s : run.samples)
-    for (std::size_t i = 0; i < v_max.size() && i < s.bodies.size(); ++i)
-      v_max[i] = std::max(v_max[i], s.bodies[i].velocity.norm());
+  const std::vector<double> v_max = top_speeds(w, run);
   const double base = kSanityDeepPenetration * w.tol;
   DeepestPair found(base);
-  std::string lost;  // a body the grid cannot place: a non-finite position fails the rule
+  // A sample the grid cannot place fails the rule, saying why: a body missing
+  // from it, or one at a non-finite position.
+  std::string lost;
   for (const auto& s : run.samples) {
+    if (s.bodies.size() < w.is_static.size()) {
+      lost = "the sample at t = " + num(s.t) + " s has " + std::to_string(s.bodies.size()) + " bodies, the scene " +
+             std::to_string(w.is_static.size());
+      break;
+    }
     const auto posed = pose_all(w, s);
     for (const std::size_t i : moving)
-      if (i < posed.size() && !posed[i].c.allFinite() && lost.empty())
+      if (!posed[i].c.allFinite() && lost.empty())
         lost = scene.bodies[i].name + "'s position is not finite at t = " + num(s.t) + " s";
     if (!lost.empty()) break;
-    if (posed.size() < w.is_static.size()) continue;
     touching_pairs(w, posed, moving, 2 * r_max, [&](std::size_t i, std::size_t j) {
       const double bound = base + step * (v_max[i] + v_max[j]);
       // As in rule 2: −face_gap bounds two polyhedra's depth from above, so

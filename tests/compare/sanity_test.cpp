@@ -468,7 +468,7 @@ TEST(Sanity, AnOverlapWithoutASearchMayReachOneStepsTravelOfBoth) {
   EXPECT_TRUE(fails(compare::overlap_check(scene, make_run(scene, 0.1, closing(6e-3)))));
 }
 
-TEST(Sanity, ANonFinitePositionFailsTheOverlapRuleNamingTheBody) {
+TEST(Sanity, ANonFinitePositionOrAMissingBodyFailsTheOverlapRule) {
   const auto scene = two_cube_stack();
   const auto run = make_run(scene, 0.1, [](std::size_t b, double t) {
     return State{{0, 0, b == 2 && t > 0.05 ? std::nan("") : 0.1 + 0.2 * (b - 1)}, {0, 0, 0}};
@@ -476,6 +476,13 @@ TEST(Sanity, ANonFinitePositionFailsTheOverlapRuleNamingTheBody) {
   const CheckLine l = compare::overlap_check(scene, run);
   EXPECT_TRUE(fails(l));
   EXPECT_NE(l.note.find("heavy's position is not finite at t = 0.06 s"), std::string::npos) << l.note;
+  // A sample short of a body (a results file cut short) fails too, not skipped.
+  auto cut = make_run(scene, 0.1, [](std::size_t b, double) { return State{{0, 0, 0.1 + 0.2 * (b - 1)}, {0, 0, 0}}; });
+  cut.samples[3].bodies.pop_back();
+  const CheckLine short_sample = compare::overlap_check(scene, cut);
+  EXPECT_TRUE(fails(short_sample));
+  EXPECT_NE(short_sample.note.find("the sample at t = 0.03 s has 2 bodies, the scene 3"), std::string::npos)
+      << short_sample.note;
 }
 
 // The grid finds what every pair finds: 300 turned boxes of sizes 0.02 to
