@@ -8,6 +8,7 @@
 //     has something to hit: alone in the air it takes whole steps.
 //   - A body too fast for any step stops the run with one line naming it.
 #include "core/collision/push_out_step.hpp"
+#include "core/collision/separating_axis.hpp"
 #include "core/dynamics/simulator.hpp"
 #include "core/parallel.hpp"
 
@@ -19,6 +20,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <filesystem>
@@ -768,6 +770,65 @@ TYPED_TEST_P(CollisionStepCases, CrowdedBoxWithoutASearchStaysWithinOneStepsTrav
   EXPECT_GT(run.counters.at("push_out_detections"), 1000u);  // the impacts it took too deep
 }
 
+// Without a search, a correction can carry a body past its reach into one it
+// had no pair with in the step (core/collision/collision_step.hpp,
+// catch_escaped). A heavy cube A falls at speed v onto a light cube B that
+// rests a gap g above the slab, and ends the step v h − 0.5 mm deep in B;
+// the push-out lifts A and drives B down by most of that, past g, into the
+// slab: a pair the step unlinked as apart beyond B's reach (B at rest
+// reaches ½|g|h²). A family of 12 seeded cases (mass ratio 3–20, g 0.3–1.5
+// mm, v 3–6 m/s, A turned by up to 0.05 rad about a horizontal axis): at the
+// step's end no pair is deeper than the tolerance (exact depths,
+// collision::sat_reference). Without catch_escaped every case left B
+// 1.4–4.0 mm in the slab; without the push-out's held neighbours
+// (push_out_step.hpp) one case ended with B 2.8 mm in it.
+TYPED_TEST_P(CollisionStepCases, ACorrectionThatCarriesABodyPastItsReachIsPushedOutToo) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int c = 0; c < 12; ++c) {
+    core::Scene s = this->drop();
+    core::Collisions* collisions = s.find_effect<core::Collisions>();
+    ASSERT_NE(collisions, nullptr);
+    collisions->time_of_impact = core::TimeOfImpact::none;
+    const double tol = collisions->penetration_tolerance, h = collisions->step;
+    s.duration = h;
+    s.output_every = h;
+    const double ratio = 3 + 17 * u(rng), g = 3e-4 + 1.2e-3 * u(rng), v = 3 + 3 * u(rng), turn = 0.05 * u(rng);
+    const double axis = 2 * M_PI * u(rng);
+    core::Body& b = s.bodies[1];
+    b.name = "B";
+    b.position = {0, 0, 0.1 + g};
+    b.orientation = {1, 0, 0, 0};
+    b.velocity = b.angular_velocity = Eigen::Vector3d::Zero();
+    core::Body a = b;
+    a.name = "A";
+    a.mass = ratio * *b.mass;
+    const Eigen::Quaterniond q(Eigen::AngleAxisd(turn, Eigen::Vector3d(std::cos(axis), std::sin(axis), 0)));
+    a.orientation = {q.w(), q.x(), q.y(), q.z()};
+    // A's lowest point 0.5 mm above B's top face.
+    const double below = 0.1 * (std::abs(q.toRotationMatrix()(2, 0)) + std::abs(q.toRotationMatrix()(2, 1)) +
+                                std::abs(q.toRotationMatrix()(2, 2)));
+    a.position = {0, 0, 0.2 + g + 5e-4 + below};
+    a.velocity = {0, 0, -v};
+    s.bodies.push_back(a);
+    const core::Run run = core::simulate<TypeParam>(s);
+    ASSERT_FALSE(run.error) << *run.error;
+    const core::Model model = core::compile(s);
+    const auto& last = run.samples.back();
+    ASSERT_NEAR(last.t, h, 1e-12);
+    const auto placed = [&](std::size_t i) {
+      const auto& x = last.bodies[i];
+      return collision::Placed{model.bodies[i].mesh.get(), {core::rotation_matrix(x.orientation), x.position}};
+    };
+    for (const auto& [i, j] : {std::pair<std::size_t, std::size_t>{0, 1}, {0, 2}, {1, 2}})
+      EXPECT_LE(collision::sat_reference(placed(i), placed(j)).depth, tol)
+          << "case " << c << ": " << s.bodies[i].name << "–" << s.bodies[j].name << " (mass ratio " << ratio
+          << ", gap " << g << " m, speed " << v << " m/s, turn " << turn << " rad; pairs caught deep "
+          << run.counters.at("escaped_deep_pairs") << ", push-outs left deep " << run.counters.at("push_out_left_deep") << ")";
+    EXPECT_GE(run.counters.at("escaped_deep_pairs"), 1u) << "case " << c;
+  }
+}
+
 // The push-out's bounds (core/collision/push_out_step.hpp) hold every pair's
 // depth at every pass: the crowded box without a search after 0.2 s, each
 // body then moved on by one step's travel (v h, up to 7 mm; what a step
@@ -896,6 +957,89 @@ TYPED_TEST_P(CollisionStepCases, ThePushOutsDirectCorrectionMovesTheBodiesAsTheS
   std::printf("[ %zu contacts, moved up to %.3g m, the two apart by %.3g m ]\n", deep.hits.size(), moved, differ);
 }
 
+// One correction of the push-out lifts a pair it meets at one or two points
+// out of the tolerance: the rows at those points alone let the body turn
+// about them, and the turn lowered its other vertices into the other body
+// (contact_solver.hpp, pivot_rows). A family of seeded cases: the drop's cube,
+// or a tetrahedron of the same mass, lying on an edge, tilted so that the
+// edge's lower end is 1 to 5 mm into the slab (10 to 50 tolerances, a step's
+// travel without a search) and its other end 0.2 to 2 mm above the slab,
+// outside the manifold's band; one correction, then the exact depth
+// (collision::sat_reference).
+TYPED_TEST_P(CollisionStepCases, ThePushOutLiftsAPairMetAtOneOrTwoPointsWithoutTurningItBackIn) {
+  using B = TypeParam;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  double worst = 0;
+  for (int k = 0; k < 24; ++k) {
+    core::Scene scene = this->drop();
+    core::Body& body = scene.bodies[1];
+    if (k % 2) body.shape = core::TetrahedronShape{0.3};
+    const double tol = scene.find_effect<core::Collisions>()->penetration_tolerance;
+    const double deep = 1e-3 + 4e-3 * unit(rng), gap = 2e-4 + 1.8e-3 * unit(rng);
+    // Lying on an edge under its centre (the cube turned 45° about x, the
+    // tetrahedron as it is made), rolled about that edge by up to 0.3 rad and
+    // turned about the vertical at random: the edge's two ends lie on either
+    // side of the centre, so a turn that lifts one end lowers the other.
+    const core::Vec3 edge = k % 2 ? core::Vec3(-1, 1, 0).normalized() : core::Vec3::UnitX();
+    const Eigen::Quaterniond base = k % 2 ? Eigen::Quaterniond::Identity()
+                                          : Eigen::Quaterniond(Eigen::AngleAxisd(std::numbers::pi / 4, core::Vec3::UnitX()));
+    const Eigen::Quaterniond q0 = Eigen::AngleAxisd(2 * std::numbers::pi * unit(rng), core::Vec3::UnitZ()) *
+                                  Eigen::AngleAxisd(0.6 * unit(rng) - 0.3, edge) * base;
+    const core::Model compiled = core::compile(scene);
+    const auto& vertices = compiled.bodies[1].mesh->vertices();
+    const auto heights = [&](const Eigen::Quaterniond& q) {
+      std::vector<double> z;
+      for (const core::Vec3& v : vertices) z.push_back((q * v).z());
+      std::ranges::sort(z);
+      return z;
+    };
+    // Bisection on the tilt about the edge's horizontal normal: its ends
+    // deep + gap apart in height, so the upper end is gap above the slab.
+    std::vector<core::Vec3> turned;
+    for (const core::Vec3& v : vertices) turned.push_back(q0 * v);
+    std::ranges::sort(turned, {}, [](const core::Vec3& v) { return v.z(); });
+    const core::Vec3 along = (turned[1] - turned[0]).cwiseProduct(core::Vec3(1, 1, 0)).normalized();
+    const core::Vec3 axis = core::Vec3::UnitZ().cross(along);
+    double lo = 0, hi = 0.5;
+    Eigen::Quaterniond q = q0;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      q = Eigen::Quaterniond(Eigen::AngleAxisd(mid, axis)) * q0;
+      const auto z = heights(q);
+      (z[1] - z[0] < deep + gap ? lo : hi) = mid;
+    }
+    const auto z = heights(q);
+    body.orientation = {q.w(), q.x(), q.y(), q.z()};
+    body.position = core::Vec3(0, 0, -z[0] - deep);
+    scene.find_effect<core::Collisions>()->penetration_tolerance = 0.05;  // to build it so deep (fn 28's check)
+    const auto model = B::build(scene);
+    std::vector<double> y(B::state_size(model));
+    B::initial_state(model, y);
+    using C = std::decay_t<decltype(*model.collisions)>;
+    C c = *model.collisions;
+    c.setup.settings.penetration_tolerance = tol;
+    const WholeBoxIsland<C> island(model, c);
+    const auto& a = island.a;
+    typename C::State state;
+    core::Profile profile;
+    std::vector<double> ys = a.gather(std::span<const double>(y).subspan(model.offset));
+    const core::Detection d = c.detect_among(state, a.model, ys, a.group, island.among, profile);
+    ASSERT_EQ(d.hits.size(), 1u);
+    ASSERT_EQ(d.hits[0].features.size(), 1u) << "case " << k;  // the upper end is outside the band
+    ASSERT_NEAR(d.hits[0].sat.depth, deep, 1e-9) << "case " << k;
+    c.push_out(state, a.model, ys, a.group, d.hits, profile);
+    const auto placed = [&](int b) {
+      return collision::Placed{c.setup.meshes[static_cast<std::size_t>(b)].get(),
+                               C::BodiesType::pose(a.model, ys, static_cast<std::size_t>(b))};
+    };
+    const double after = collision::sat_reference(placed(0), placed(1)).depth;
+    EXPECT_LE(after, tol) << "case " << k << ": " << deep << " m deep, the next vertex " << gap << " m above";
+    worst = std::max(worst, after);
+  }
+  std::printf("[ the deepest after one correction: %.3g m ]\n", worst);
+}
+
 // The direct solve's groups on the run's threads (contact_solver.hpp,
 // direct) give the answer one thread gives, bit for bit: the crowded box's
 // pile a step on, its response and then its push-out's correction, on one
@@ -1020,6 +1164,8 @@ REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithin
                             TheTunnellingRuleReadsHowFastAPairCloses, AReachBoundsEveryPointsPathInAStep,
                             AReachBoundsThePathOfAPushedBody, ThePushOutsBoundsHoldEveryPairsDepth,
                             ThePushOutsDirectCorrectionMovesTheBodiesAsTheSweepsDo,
-                            TheDirectSolvesGroupsOnTwoThreadsGiveOneThreadsAnswer, ASlidingPairIsKeptAgainOnceAtRest);
+                            ThePushOutLiftsAPairMetAtOneOrTwoPointsWithoutTurningItBackIn,
+                            TheDirectSolvesGroupsOnTwoThreadsGiveOneThreadsAnswer, ASlidingPairIsKeptAgainOnceAtRest,
+                            ACorrectionThatCarriesABodyPastItsReachIsPushedOutToo);
 
 }  // namespace gacompare::testing

@@ -180,6 +180,17 @@ class Broadphase {
     return out;
   }
 
+  // Calls on_body(i) for every body whose bounding sphere at the last find
+  // may meet the sphere (world centre, radius), and returns true; or returns
+  // false, calling nothing, for the sweep, which keeps no structure to ask.
+  template <class F>
+  bool query(const Vec3& centre, double radius, std::vector<int>& stack, F&& on_body) const {
+    if (method_ == BroadphaseMethod::sweep || frames_ == 0) return false;
+    if (method_ == BroadphaseMethod::aabb_tree) aabb_.query(centre - frame_, radius, stack, on_body);
+    else spheres_tree_.query(centre - frame_, radius, stack, on_body);
+    return true;
+  }
+
   BroadphaseMethod method() const { return method_; }
   const Vec3& frame() const { return frame_; }
   int frames() const { return frames_; }  // how often the frame was set (1 + re-centrings)

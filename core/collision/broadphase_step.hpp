@@ -42,6 +42,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::detect(State& state, const Model& m,
     // detections; another group without its candidates (detect_among) is
     // swept afresh.
     const std::vector<Vec3> centres = sphere_centres(pose, group);
+    if (group.data() == setup.all_bodies.data()) state.world_centres.assign(centres.begin(), centres.end());
     std::vector<double> radii(n);
     std::vector<char> fixed(n);
     for (std::size_t k = 0; k < n; ++k) {

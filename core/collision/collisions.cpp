@@ -21,9 +21,12 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
   out["impact_bodies_integrated"] = impact_bodies_integrated;
   out["impact_island_misses"] = impact_island_misses;
   out["impact_pairs_deep_at_start"] = impact_pairs_deep_at_start;
-  if (push_out_detections) {
+  if (push_out_detections || escaped_bodies) {
     out["push_out_detections"] = push_out_detections;
     out["push_out_left_deep"] = push_out_left_deep;
+    out["push_out_held_detections"] = push_out_held_detections;
+    out["escaped_bodies"] = escaped_bodies;
+    out["escaped_deep_pairs"] = escaped_deep_pairs;
   }
   out["contacts"] = contacts;
   out["resting_contacts"] = resting_contacts;

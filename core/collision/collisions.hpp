@@ -114,6 +114,10 @@ struct CollisionState {
   // only the entries of the bodies its candidates name are current.
   std::vector<collision::Pose> among_pose;
   std::vector<Vec3> among_centres;
+  // The world's bounding-sphere centres at its last detection (the step's,
+  // before its responses): where collision_step.hpp's catch_escaped looks
+  // for the pairs a correction made.
+  std::vector<Vec3> world_centres;
 };
 
 // The collider works on a group of bodies: the whole world (the world's model

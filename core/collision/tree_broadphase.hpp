@@ -173,6 +173,16 @@ class TreeBroadphase {
     leaf_.clear(), tree_.clear(), kept_.clear(), is_static_.clear(), last_.clear();
   }
 
+  // Calls on_body(i) for every body whose fat volume, as the last update
+  // left it, meets the sphere (centre in the frame, radius): a superset of
+  // the bodies whose spheres then did. Reads the trees only (the caller's
+  // stack), so queries on several threads may run at once.
+  template <class F>
+  void query(const Vec3& centre, double radius, std::vector<int>& stack, F&& on_body) const {
+    const auto q = V::bound(centre, radius, Ops::sphere(centre, radius));
+    for (const Tree& t : trees_) t.query(q, stack, on_body);
+  }
+
   // Appends the pairs whose spheres overlap to `pairs` and, with margins, the
   // pairs whose grown spheres do to `candidates` (both i < j, sorted; every
   // pair is a candidate). A leaf bounds the grown sphere, so its fat volume
