@@ -197,7 +197,6 @@ class PushOutStep {
  private:
   static constexpr double kUnmeasured = std::numeric_limits<double>::quiet_NaN();
 
-
   // A measured depth as a bound: a non-finite one (none the narrowphase
   // gives a pair it tested) bounds nothing, and counts as 0, the bound of a
   // pair known to be apart.
@@ -264,8 +263,10 @@ class PushOutStep {
                        const std::vector<double>& ys, const std::vector<std::size_t>& tested, std::vector<double>& bound,
                        Detection& d, Profile& profile) const {
     const double tol = c_.setup.settings.penetration_tolerance;
+    // Flags over the island's pairs, cleared after use: a pile's island
+    // holds some 29,000 pairs, a pass a few hundred.
     std::vector<char>& seen = seen_;
-    seen.assign(among.size(), 0);
+    seen.resize(among.size(), 0);
     for (const std::size_t q : tested) seen[q] = 1;
     std::vector<std::size_t> near;
     for (const PairHit& h : d.hits) {
@@ -279,6 +280,8 @@ class PushOutStep {
         }
       }
     }
+    for (const std::size_t q : tested) seen[q] = 0;
+    for (const std::size_t q : near) seen[q] = 0;
     if (near.empty()) return;
     std::ranges::sort(near);
     Pairs pairs(near.size());
@@ -296,7 +299,7 @@ class PushOutStep {
     apart_by_spheres(a, ys, among, bound, near);
     d.hits.insert(d.hits.end(), held.hits.begin(), held.hits.end());
   }
-  mutable std::vector<char> seen_;  // hold_neighbours': the pairs a pass tests
+  mutable std::vector<char> seen_;  // hold_neighbours': the pairs a pass tests, all 0 between calls
 
   // Every pair's bound raised by how far its two bodies moved from `from` to
   // `to`. Only `bodies` (sorted) may have moved, so only their pairs are
