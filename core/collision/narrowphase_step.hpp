@@ -99,8 +99,11 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
         // nothing: a shape is a function of its mesh and pose alone.
         for (const int k : {s.h.a, s.h.b}) {
           const int w = group[k];
-          if (std::atomic_ref<std::uint64_t>(state.placed_in[w]).exchange(state.detection, std::memory_order_relaxed) ==
-              state.detection)
+          // Read before the exchange: most of a body's pairs find it placed,
+          // and an exchange writes, taking the line from the other core's cache.
+          std::atomic_ref<std::uint64_t> placed(state.placed_in[w]);
+          if (placed.load(std::memory_order_relaxed) == state.detection ||
+              placed.exchange(state.detection, std::memory_order_relaxed) == state.detection)
             continue;
           ++s.shapes;
           auto& shape = state.shapes[w];
