@@ -32,10 +32,11 @@ struct CollisionCounters {
   // response's correction, and the islands left deeper than the tolerance
   // after every pass (push_out_step.hpp).
   std::uint64_t push_out_detections = 0, push_out_left_deep = 0;
-  // Without a search: the bodies a step's corrections carried farther than
-  // their reach, and the pairs deeper than the tolerance they were found in
-  // that no island had tested (collision_step.hpp, catch_escaped).
-  std::uint64_t escaped_bodies = 0, escaped_deep_pairs = 0;
+  // The bodies a step's responses carried farther than their reach, the
+  // pairs deeper than the tolerance they were found in that no island had
+  // tested (collision_step.hpp, catch_escaped), and with a search the
+  // islands those pairs sent to step alone again (step_again).
+  std::uint64_t escaped_bodies = 0, escaped_deep_pairs = 0, escaped_islands_stepped = 0;
   // Push-out detections of the pairs beside a pass's deep ones (push_out_step.hpp, hold_neighbours).
   std::uint64_t push_out_held_detections = 0;
   std::uint64_t contacts = 0, impulses = 0, resting_contacts = 0, sweeps = 0, corrections = 0;

@@ -27,6 +27,7 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
     out["push_out_held_detections"] = push_out_held_detections;
     out["escaped_bodies"] = escaped_bodies;
     out["escaped_deep_pairs"] = escaped_deep_pairs;
+    out["escaped_islands_stepped"] = escaped_islands_stepped;
   }
   out["contacts"] = contacts;
   out["resting_contacts"] = resting_contacts;
