@@ -383,6 +383,10 @@ struct Collider {
   // between them: collision::local_origin).
   template <class F>
   static auto in_pair_frame(const Shape& a, const Shape& b, F&& f);
+  // The same over shapes of the pair's own, placed here (without reuse);
+  // counts them in `shapes`.
+  template <class F>
+  static auto on_own_shapes(const collision::Placed& a, const collision::Placed& b, std::uint64_t& shapes, F&& f);
 };
 
 }  // namespace gacompare::core

@@ -228,15 +228,27 @@ auto Collider<Bodies, NarrowBody, Spheres>::apart_beyond_reach(const State& stat
   const double gap = -h.sat.depth;
   const bool face = h.sat.feature == collision::Feature::face_a || h.sat.feature == collision::Feature::face_b;
   if (face && gap > reach) return true;
+  const auto beyond = [&](const NarrowBody& va, const NarrowBody& vb) {
+    if (collision::round_pair(va, vb)) return gap > reach;  // already exact
+    ++face_tested;
+    return collision::face_gap(va, vb, reach) > reach;
+  };
   // The bodies' shapes of this detection (placed above), or their own.
+  if (setup.settings.reuse) return in_pair_frame(state.shapes[wa], state.shapes[wb], beyond);
+  return on_own_shapes(placed(pose, group, h.a), placed(pose, group, h.b), shapes, beyond);
+}
+
+template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
+requires collision::NarrowphaseBody<NarrowBody>
+template <class F>
+auto Collider<Bodies, NarrowBody, Spheres>::on_own_shapes(const collision::Placed& a, const collision::Placed& b,
+                                                          std::uint64_t& shapes, F&& f) {
+  // Constructed only here: two Shapes are some 4 KB, and building them,
+  // unused, for every pair found apart with reuse on was 2.8 % of the samples
+  // of a 10,000-body pile's collision step.
   Shape own_a, own_b;
-  if (!setup.settings.reuse) own_a.place(placed(pose, group, h.a)), own_b.place(placed(pose, group, h.b)), shapes += 2;
-  return in_pair_frame(setup.settings.reuse ? state.shapes[wa] : own_a, setup.settings.reuse ? state.shapes[wb] : own_b,
-                       [&](const NarrowBody& va, const NarrowBody& vb) {
-                         if (collision::round_pair(va, vb)) return gap > reach;  // already exact
-                         ++face_tested;
-                         return collision::face_gap(va, vb, reach) > reach;
-                       });
+  own_a.place(a), own_b.place(b), shapes += 2;
+  return in_pair_frame(own_a, own_b, f);
 }
 
 template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
@@ -252,13 +264,9 @@ requires collision::NarrowphaseBody<NarrowBody>
 template <class PoseA, class PoseB, class F>
 auto Collider<Bodies, NarrowBody, Spheres>::on_pair(State& state, int wa, int wb, PoseA&& pose_a, PoseB&& pose_b,
                                                     F&& f) const {
-  Shape own_a, own_b;
-  if (!setup.settings.reuse) {
-    own_a.place({setup.meshes[wa].get(), pose_a()}), own_b.place({setup.meshes[wb].get(), pose_b()});
-    state.counters.narrowphase_shapes += 2;
-  }
-  return in_pair_frame(setup.settings.reuse ? shape(state, wa, pose_a) : own_a,
-                       setup.settings.reuse ? shape(state, wb, pose_b) : own_b, f);
+  if (setup.settings.reuse) return in_pair_frame(shape(state, wa, pose_a), shape(state, wb, pose_b), f);
+  return on_own_shapes({setup.meshes[wa].get(), pose_a()}, {setup.meshes[wb].get(), pose_b()},
+                       state.counters.narrowphase_shapes, f);
 }
 
 template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
