@@ -35,8 +35,10 @@ struct CollisionCounters {
   // The bodies a step's responses carried farther than their reach, the
   // pairs deeper than the tolerance they were found in that no island had
   // tested (collision_step.hpp, catch_escaped), and with a search the
-  // islands those pairs sent to step alone again (step_again).
+  // islands those pairs sent to step alone again (step_again), and the
+  // moving bodies those held.
   std::uint64_t escaped_bodies = 0, escaped_deep_pairs = 0, escaped_islands_stepped = 0;
+  std::uint64_t escaped_island_bodies_stepped = 0;
   // Push-out detections of the pairs beside a pass's deep ones (push_out_step.hpp, hold_neighbours).
   std::uint64_t push_out_held_detections = 0;
   std::uint64_t contacts = 0, impulses = 0, resting_contacts = 0, sweeps = 0, corrections = 0;

@@ -356,6 +356,7 @@ class CollisionStep {
         if (s_.sleep.is_asleep(static_cast<std::size_t>(is.bodies[i])))
           s_.counters.sleep_woken_by_touch += s_.sleep.wake(is.bodies[i]);
       ++s_.counters.escaped_islands_stepped;
+      s_.counters.escaped_island_bodies_stepped += is.moving;
       std::vector<PairHit> none;
       step_alone(is, links, none, {}, moved, y, y0, t0, t1, profile, false);
     }

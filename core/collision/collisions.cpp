@@ -28,6 +28,7 @@ void CollisionCounters::add_to(std::map<std::string, std::uint64_t>& out) const 
     out["escaped_bodies"] = escaped_bodies;
     out["escaped_deep_pairs"] = escaped_deep_pairs;
     out["escaped_islands_stepped"] = escaped_islands_stepped;
+    out["escaped_island_bodies_stepped"] = escaped_island_bodies_stepped;
   }
   out["contacts"] = contacts;
   out["resting_contacts"] = resting_contacts;
