@@ -841,6 +841,9 @@ TYPED_TEST_P(CollisionStepCases, ABodyCarriedPastItsReachEndsTheStepWithinTheTol
       // With a search the caught pair's islands step again (its impact searched for); without, they are pushed out.
       if (search) EXPECT_GE(counter("escaped_islands_stepped"), 1u) << "searched case " << c;
       else EXPECT_EQ(counter("escaped_islands_stepped"), 0u) << "unsearched case " << c;
+      // Each island stepped again holds one or both cubes (the slab is static).
+      EXPECT_GE(counter("escaped_island_bodies_stepped"), counter("escaped_islands_stepped")) << "case " << c;
+      EXPECT_LE(counter("escaped_island_bodies_stepped"), 2 * counter("escaped_islands_stepped")) << "case " << c;
     }
   }
 }
