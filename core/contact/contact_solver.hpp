@@ -139,8 +139,9 @@ class ContactSolver {
   // before). Once per collision step; `step` counts the collision steps. An
   // older entry is only ignored from then on (warm_start reads it as
   // missing) and erased every kEraseEvery steps: a pass over the whole cache
-  // at every step was 1 % of the 10,000-body pile's step on two threads, all
-  // of it on the run's own thread.
+  // at every step, all of it on the run's own thread, averaged 0.1 ms a step
+  // over the 10,000-body box's second on two threads (0.37 ms, about 1 %,
+  // once it has piled up).
   void forget_old_contacts(std::uint64_t step) {
     live_from_ = step;
     if (step % kEraseEvery == 0) std::erase_if(cache_, [&](const auto& kv) { return !live(kv.second, step); });
