@@ -67,6 +67,16 @@ struct Detection {
   std::vector<std::pair<int, int>> apart;
 };
 
+// What a pair remembers between detections (collision::PairMemory): the axis
+// that decided it last (core/collision/separating_axis.hpp) and the state of
+// its kept contacts (core/collision/kept_contacts.hpp), 20 bytes read by one
+// lookup. The kept manifolds lie in a table of their own, read only by the
+// pairs whose state needs them.
+struct PairRecord {
+  collision::SatHint axis;
+  collision::KeptState kept;
+};
+
 // One pair's work in a narrowphase detection (Collider::narrow,
 // core/collision/narrowphase_step.hpp): its slot, written by whichever thread
 // tests it.
@@ -74,10 +84,11 @@ struct NarrowSlot {
   PairHit h;
   collision::SatHint hint;
   collision::FaceChoice choice;
-  collision::SatHint* hint_entry = nullptr;       // the pair's remembered axis, if it has one
-  collision::KeptContacts* kept_entry = nullptr;  // its kept contacts, refused or not, if any
+  PairRecord* record = nullptr;                   // the pair's record, if it has one
+  collision::KeptState held{};                    // its kept-contacts state, written back to the record
+  collision::KeptContacts* kept_entry = nullptr;  // its kept manifold, where it is read or kept
   bool apart = false, kept = false;
-  bool hold = false;  // its kept contacts wait (KeptContacts::wait): not kept after its test
+  bool hold = false;  // its kept contacts wait (KeptState::wait): not kept after its test
   std::uint64_t face_tested = 0, shapes = 0;
 };
 
@@ -101,7 +112,7 @@ struct CollisionState {
   std::vector<typename NarrowBody::Shape> shapes;
   std::vector<std::uint64_t> placed_in;  // the detection each shape was placed in
   std::uint64_t detection = 0;
-  collision::PairMemory<collision::SatHint> hints;  // each pair's last axis
+  collision::PairMemory<PairRecord> pairs;  // each pair's last axis and kept-contacts state
   collision::PairMemory<collision::KeptContacts> kept;  // pairs in contact: their kept manifolds
   ContactSolver<Bodies> contact;  // the response stage, with its warm-start cache
   SleepState sleep;               // empty unless the scene asks for sleeping
@@ -371,7 +382,7 @@ struct Collider {
   void forget_kept(State& state, const std::vector<std::pair<int, int>>& pairs) const {
     if (!setup.settings.reuse_contacts) return;
     for (const auto& [a, b] : pairs)
-      if (collision::KeptContacts* k = state.kept.find(std::min(a, b), std::max(a, b))) k->valid = false;
+      if (PairRecord* r = state.pairs.find(std::min(a, b), std::max(a, b))) r->kept.valid = false;
   }
 
  private:

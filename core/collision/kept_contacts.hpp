@@ -52,6 +52,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -79,14 +80,27 @@ inline constexpr double kKeepSlide = 1e-7;
 // cap once. With 16, a 10-layer pyramid gives the same run bit for bit.
 inline constexpr int kKeepBackOff = 5;
 inline constexpr int kKeepPatience = 16;
+static_assert(kKeepPatience + kKeepBackOff <= 127 && kKeepBackOff < 7, "KeptState's counts are bytes");
 
+// A pair's kept-contacts state, read at every detection of the pair: whether
+// its kept contacts are current and its refusals in a row. It lies beside the
+// pair's remembered axis (core/collision/collisions.hpp PairRecord), so that
+// the kept manifold itself (KeptContacts, a third of a kilobyte) is read only
+// where it is current and not waiting. Read for every pair, the manifolds'
+// table was a sixth of a 10,000-body pile's narrowphase in cache misses, for
+// one pair in a thousand kept.
+struct KeptState {
+  bool valid = false;        // the pair's KeptContacts are those of its last test
+  std::int8_t refused = 0;   // refreshes refused in a row, at most kKeepPatience + kKeepBackOff
+  std::int8_t wait = 0;      // detections left before the contacts are kept again
+  bool operator==(const KeptState&) const = default;
+};
+
+// A pair's kept manifold, current where its KeptState says so.
 struct KeptContacts {
-  bool valid = false;
   bool ref_is_a = true;  // the manifold's reference face is a's (else b's)
   bool sat_on_a = true;  // the separating-axis answer's face is a's (else b's)
   int count = 0;
-  int refused = 0;  // refreshes refused in a row, at most kKeepPatience + kKeepBackOff
-  int wait = 0;     // detections left before the contacts are kept again
   Mat3 rotation = Mat3::Identity();  // b's orientation in a's frame at the full test
   Vec3 offset = Vec3::Zero();        // b's position in a's frame at the full test
   Vec3 normal = Vec3::Zero();        // the reference face's outward normal, in its body's frame
@@ -107,12 +121,12 @@ inline Pose relative_pose(const Pose& a, const Pose& b) { return {relative_rotat
 
 // Keeps a pair's contacts found by the whole narrowphase at poses pa, pb (the
 // answer `sat`, its axis `hint`, the manifold's `choice` and `features`, world
-// coordinates). False, and nothing kept, for anything but a face manifold of
-// at most kMaxManifoldPoints points whose separating-axis answer is a face.
+// coordinates). False, and nothing kept (k is then not current), for anything
+// but a face manifold of at most kMaxManifoldPoints points whose
+// separating-axis answer is a face.
 inline bool keep(KeptContacts& k, const Mesh& ma, const Mesh& mb, const Pose& pa, const Pose& pb,
                  const PairContact& sat, const SatHint& hint, const FaceChoice& choice,
                  std::span<const FeatureContact> features) {
-  k.valid = false;
   if (!choice.made || features.empty() || features.size() > kMaxManifoldPoints) return false;
   const bool on_a = sat.feature == Feature::face_a;
   if (!(on_a || sat.feature == Feature::face_b) || hint.feature != sat.feature) return false;
@@ -155,27 +169,25 @@ inline bool keep(KeptContacts& k, const Mesh& ma, const Mesh& mb, const Pose& pa
   k.faces = choice.faces, k.faces_spread = choice.faces_spread;
   k.edge = choice.edge, k.edge_spread = choice.edge_spread;
   k.left_out = choice.left_out;
-  k.valid = true;
   return true;
 }
 
-// A refresh refused (a valid entry whose bound or guards failed): counts it,
+// A refresh refused (current contacts whose bound or guards failed): counts it,
 // and sets the detections to wait before the pair's contacts are kept again
 // (none within kKeepPatience refusals in a row). Returns whether this
 // detection's full test is to keep them: only when there is no wait.
-inline bool refuse(KeptContacts& k) {
-  k.refused = std::min(k.refused + 1, kKeepPatience + kKeepBackOff);
-  k.wait = k.refused > kKeepPatience ? (1 << (k.refused - kKeepPatience)) - 1 : 0;
+inline bool refuse(KeptState& k) {
+  k.refused = static_cast<std::int8_t>(std::min(k.refused + 1, kKeepPatience + kKeepBackOff));
+  k.wait = static_cast<std::int8_t>(k.refused > kKeepPatience ? (1 << (k.refused - kKeepPatience)) - 1 : 0);
   return k.wait == 0;
 }
 
-// The kept contacts at poses pa, pb: true with `sat` and the contacts appended
+// The kept contacts (current: their KeptState is valid) at poses pa, pb: true with `sat` and the contacts appended
 // to `out` (as the whole narrowphase gives them), false (nothing written) when
 // the pair must be tested from scratch (the guards above). `band` is the
 // pair's touching band in metres.
 inline bool refresh(const KeptContacts& k, const Mesh& ma, const Mesh& mb, const Pose& pa, const Pose& pb,
                     double band, PairContact& sat, std::vector<FeatureContact>& out) {
-  if (!k.valid) return false;
   const double size = std::max(ma.size(), mb.size());
   const Vec3 dt = relative_position(pa, pb) - k.offset;
   const Vec3 n_ab = k.ref_is_a ? k.normal : Vec3(-(k.rotation * k.normal));  // a towards b, a's frame

@@ -28,7 +28,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   // Kept contacts (core/collision/kept_contacts.hpp) for the manifold method.
   const bool keep = setup.settings.reuse_contacts && method == collision::Method::sat_then_manifold;
   ++state.detection;
-  if (group.data() == setup.all_bodies.data()) state.hints.next(), state.kept.next();  // a new round of pairs
+  if (group.data() == setup.all_bodies.data()) state.pairs.next(), state.kept.next();  // a new round of pairs
   // Each pair gets a slot of its own, so that the pairs can be tested on the
   // run's threads and come out the same for any number of them
   // (core/parallel.hpp):
@@ -36,10 +36,12 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   //      slots are written on the run's threads, in step 2 (a 10,000-body
   //      world's slots are megabytes, and writing them on one thread was a
   //      measurable share of the run's own thread);
-  //   2. in parallel, each pair's own lookups: its kept contacts, measured
-  //      again where its relative pose has stayed within their bound
+  //   2. in parallel, each pair's own lookups: its record (its remembered
+  //      axis and the state of its kept contacts), and its kept contacts
+  //      where that state says they are current, measured again where its
+  //      relative pose has stayed within their bound
   //      (core/collision/kept_contacts.hpp: those pairs are not tested, and
-  //      their bodies not placed for them), and its remembered axis; and each
+  //      their bodies not placed for them); and each
   //      body a tested pair needs placed, once, by the pair that claims it
   //      first (an atomic exchange of the detection it was placed in);
   //   3. in parallel, the tests, each writing back its pair's remembered axis
@@ -76,24 +78,30 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
         Slot& s = slots[u];
         s = Slot{PairHit{tests[u].first, tests[u].second, {}, {}}, {}, {}};
         const int wa = group[s.h.a], wb = group[s.h.b];
-        s.kept_entry = keep ? state.kept.find(wa, wb) : nullptr;
-        if (collision::KeptContacts* k = s.kept_entry) {
-          if (k->wait > 0) {
-            s.hold = --k->wait > 0;  // kept again after the test that ends the wait
-          } else if (collision::refresh(*k, *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a], pose[s.h.b],
-                                        collision::kTouchingBand *
-                                            collision::pair_scale(*setup.meshes[wa], *setup.meshes[wb]),
-                                        s.h.sat, s.h.features)) {
-            k->refused = 0;
-            s.kept = true;
-            return;
-          } else if (k->valid) {
-            s.hold = !collision::refuse(*k);
+        s.record = reuse || keep ? state.pairs.find(wa, wb) : nullptr;
+        if (s.record) s.held = s.record->kept;
+        if (keep && s.held.wait > 0) {
+          s.hold = --s.held.wait > 0;  // kept again after the test that ends the wait
+        } else if (keep && s.held.valid) {
+          // A current state's manifold was met at the pair's last test, as
+          // its record was, so it is in the table (were it not, the pair
+          // would read as having none).
+          if (collision::KeptContacts* k = state.kept.find(wa, wb)) {
+            if (collision::refresh(*k, *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a], pose[s.h.b],
+                                   collision::kTouchingBand *
+                                       collision::pair_scale(*setup.meshes[wa], *setup.meshes[wb]),
+                                   s.h.sat, s.h.features)) {
+              s.held.refused = 0;
+              s.record->kept = s.held;
+              s.kept = true;
+              return;
+            }
+            s.hold = !collision::refuse(s.held);
+            s.kept_entry = k;
           }
         }
         if (!reuse) return;
-        s.hint_entry = state.hints.find(wa, wb);
-        if (s.hint_entry) s.hint = *s.hint_entry;
+        if (s.record) s.hint = s.record->axis;
         // Each body a tested pair needs is placed once in this detection, by
         // the first pair to claim it. Which pair, or thread, that is changes
         // nothing: a shape is a function of its mesh and pose alone.
@@ -127,7 +135,6 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
         if (reuse) {
           h.sat = collision::narrowphase<NarrowBody>(state.shapes[group[h.a]], state.shapes[group[h.b]], method,
                                                      &h.features, &s.hint, choice);
-          if (s.hint_entry) *s.hint_entry = s.hint;
         } else {
           // The shapes placed for this pair alone; the hint only written (an
           // empty one is read as none), for the kept contacts.
@@ -135,11 +142,18 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
           h.sat = collision::narrowphase<NarrowBody>(sa, sb, method, &h.features, keep ? &s.hint : nullptr, choice);
         }
         const int wa = group[h.a], wb = group[h.b];
-        if (keeps(s) && s.kept_entry && !s.hold)
-          collision::keep(*s.kept_entry, *setup.meshes[wa], *setup.meshes[wb], pose[h.a], pose[h.b], h.sat, s.hint,
-                          s.choice, h.features);
-        else if (s.kept_entry)
-          s.kept_entry->valid = false;
+        if (reuse && s.record) s.record->axis = s.hint;
+        // The manifold kept where the test gives one and the pair does not
+        // wait: into its entry where it has one (a pair new to the table gets
+        // it in pair order, below).
+        s.held.valid = false;
+        if (keeps(s) && !s.hold) {
+          if (!s.kept_entry) s.kept_entry = state.kept.find(wa, wb);
+          if (s.kept_entry)
+            s.held.valid = collision::keep(*s.kept_entry, *setup.meshes[wa], *setup.meshes[wb], pose[h.a], pose[h.b],
+                                           h.sat, s.hint, s.choice, h.features);
+        }
+        if (s.record) s.record->kept = s.held;
         // A pair within the touching band is in contact too (it has contacts):
         // its yes/no is rounding's (core/collision/collision.hpp), and a box resting
         // exactly on another fell for a step whenever it rounded to apart.
@@ -157,7 +171,12 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   //   c. in parallel, each block's hits, gaps and links apart written where
   //      the counts before it put them: every list in pair order.
   const auto apart = [](const Slot& s) { return !s.h.sat.intersect && s.h.features.empty(); };
-  const auto fresh = [&](const Slot& s) { return !s.kept && ((keeps(s) && !s.kept_entry) || (reuse && !s.hint_entry)); };
+  // A pair new to the records (its kept-contacts state counts where it is not
+  // the empty one, as without reuse) or to the kept manifolds.
+  const auto manifold_new = [&](const Slot& s) { return keeps(s) && !s.hold && !s.kept_entry; };
+  const auto fresh = [&](const Slot& s) {
+    return !s.kept && ((!s.record && (reuse || manifold_new(s) || s.held != collision::KeptState{})) || manifold_new(s));
+  };
   struct Block {
     std::size_t hits = 0, gaps = 0, far = 0;
     std::uint64_t face_tested = 0, shapes = 0, kept = 0, axes = 0;
@@ -193,13 +212,19 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
     hits += k.hits, gaps += k.gaps, far += k.far;
     for (const std::size_t u : k.fresh) {
       Slot& s = slots[u];
+      if (!manifold_new(s)) continue;
       const int wa = group[s.h.a], wb = group[s.h.b];
-      if (keeps(s) && !s.kept_entry)
-        collision::keep(state.kept.at(wa, wb), *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a], pose[s.h.b],
-                        s.h.sat, s.hint, s.choice, s.h.features);
-      if (reuse && !s.hint_entry) state.hints.at(wa, wb) = s.hint;
+      s.held.valid = collision::keep(state.kept.at(wa, wb), *setup.meshes[wa], *setup.meshes[wb], pose[s.h.a],
+                                     pose[s.h.b], s.h.sat, s.hint, s.choice, s.h.features);
+      if (s.record) s.record->kept = s.held;
     }
   }
+  // The pairs new to the records last: an insertion can move the records,
+  // which the loop above writes through the slots' pointers.
+  for (const Block& k : block)
+    for (const std::size_t u : k.fresh)
+      if (const Slot& s = slots[u]; !s.record && (reuse || s.held != collision::KeptState{}))
+        state.pairs.at(group[s.h.a], group[s.h.b]) = {reuse ? s.hint : collision::SatHint{}, s.held};
   d.hits.resize(hits), d.gaps.resize(gaps), d.apart.resize(far);
   for_each_block(slots.size(), kGrainBody, [&](std::size_t b, std::size_t begin, std::size_t end) {
     auto [h, gap, a] = at[b];

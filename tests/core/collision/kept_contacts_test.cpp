@@ -10,7 +10,7 @@ namespace gacompare::collision {
 namespace {
 
 TEST(KeptContacts, RefusalsInARowWaitOnlyPastThePatienceAndAtMostThirtyOne) {
-  KeptContacts k;
+  KeptState k;
   k.valid = true;
   const int waits[] = {1, 3, 7, 15, 31, 31, 31};
   for (int r = 1; r <= kKeepPatience + 7; ++r) {
