@@ -1,6 +1,7 @@
 #pragma once
-// What a pair of bodies remembers from one detection to the next (the
-// narrowphase's separating axis, core/collision/separating_axis.hpp SatHint). A
+// What a pair of bodies remembers from one detection to the next (its
+// separating axis and kept-contacts state, core/collision/collisions.hpp
+// PairRecord; its kept manifold, core/collision/kept_contacts.hpp). A
 // detection of the whole world starts a new round (next()); a pair that no
 // detection of the last round met (it left the broadphase) is forgotten, and
 // one that comes back starts afresh. Detections of a part of the world (an
