@@ -25,7 +25,13 @@
 // only, flipped every other iteration, each version with its own Profile:
 // the repetitions' ratios then agree to a per cent or two), or run the two
 // builds at once with --benchmark_filter=threads:1, one per core (taskset),
-// and again with the cores swapped, since the cores' speeds differ too.
+// and again with the cores swapped, since the cores' speeds differ too. A
+// third needs no change to the code: alternate the two builds in many short
+// runs (six or more each) on a scene restarted near the phase to time
+// (bench/scale/restart_scene.py), with a short --settle (0.08 s on the
+// 10,000-body pile restarted at 0.9 s: long enough for the kept contacts'
+// refusals and waits, which start empty, to reach their steady share), and
+// take the median of the paired ratios.
 //
 // Benchmarks BM_step/<backend>/threads:<n>. Counters, per step: each stage's
 // milliseconds (from the run's own stage profile), the milliseconds between
