@@ -75,6 +75,7 @@ struct Detection {
 struct PairRecord {
   collision::SatHint axis;
   collision::KeptState kept;
+  bool operator==(const PairRecord&) const = default;
 };
 
 // One pair's work in a narrowphase detection (Collider::narrow,
@@ -85,6 +86,7 @@ struct NarrowSlot {
   collision::SatHint hint;
   collision::FaceChoice choice;
   PairRecord* record = nullptr;                   // the pair's record, if it has one
+  PairRecord remembered{};                        // and what it held
   collision::KeptState held{};                    // its kept-contacts state, written back to the record
   collision::KeptContacts* kept_entry = nullptr;  // its kept manifold, where it is read or kept
   bool apart = false, kept = false;

@@ -154,6 +154,7 @@ struct SatHint {
   Feature feature = Feature::none;
   int i = -1, j = -1;
   bool kept = false;  // written: the answer is the remembered axis's (it still separates)
+  bool operator==(const SatHint&) const = default;
 };
 
 // The face of f most turned towards o's centre (−1 if none compares): the
