@@ -51,6 +51,14 @@ class PairMemory {
     ++count_;
     return values_[at];
   }
+  // Asks the cache for the place where the pair (i, j)'s lookup starts: its
+  // key and its value, read a few pairs later by find().
+  void prefetch(int i, int j) const {
+    if (keys_.empty()) return;
+    const std::size_t at = home(key(i, j));
+    __builtin_prefetch(&keys_[at]);
+    __builtin_prefetch(&values_[at]);
+  }
   // The pair (i, j)'s value if a detection of the last round or of this one
   // met it, else nullptr; adds nothing. A pair found counts as met in this
   // round. The pointer holds until the next at() or next(). Safe on several
