@@ -182,10 +182,10 @@ inline bool refuse(KeptState& k) {
   return k.wait == 0;
 }
 
-// The kept contacts (current: their KeptState is valid) at poses pa, pb: true with `sat` and the contacts appended
-// to `out` (as the whole narrowphase gives them), false (nothing written) when
-// the pair must be tested from scratch (the guards above). `band` is the
-// pair's touching band in metres.
+// The kept contacts (current: their KeptState is valid) at poses pa, pb: true
+// with `sat` and the contacts appended to `out` (as the whole narrowphase
+// gives them), false (nothing written) when the pair must be tested from
+// scratch (the guards above). `band` is the pair's touching band in metres.
 inline bool refresh(const KeptContacts& k, const Mesh& ma, const Mesh& mb, const Pose& pa, const Pose& pb,
                     double band, PairContact& sat, std::vector<FeatureContact>& out) {
   const double size = std::max(ma.size(), mb.size());

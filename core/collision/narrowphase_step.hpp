@@ -186,12 +186,11 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   //   c. in parallel, each block's hits, gaps and links apart written where
   //      the counts before it put them: every list in pair order.
   const auto apart = [](const Slot& s) { return !s.h.sat.intersect && s.h.features.empty(); };
-  // A pair new to the records (its kept-contacts state counts where it is not
-  // the empty one, as without reuse) or to the kept manifolds.
+  // A pair new to the kept manifolds, or to the records (without reuse a
+  // record is kept only for a state other than the empty one).
   const auto manifold_new = [&](const Slot& s) { return keeps(s) && !s.hold && !s.kept_entry; };
-  const auto fresh = [&](const Slot& s) {
-    return !s.kept && ((!s.record && (reuse || manifold_new(s) || s.held != collision::KeptState{})) || manifold_new(s));
-  };
+  const auto record_new = [&](const Slot& s) { return !s.record && (reuse || s.held != collision::KeptState{}); };
+  const auto fresh = [&](const Slot& s) { return !s.kept && (manifold_new(s) || record_new(s)); };
   struct Block {
     std::size_t hits = 0, gaps = 0, far = 0;
     std::uint64_t face_tested = 0, shapes = 0, kept = 0, axes = 0;
@@ -238,7 +237,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   // which the loop above writes through the slots' pointers.
   for (const Block& k : block)
     for (const std::size_t u : k.fresh)
-      if (const Slot& s = slots[u]; !s.record && (reuse || s.held != collision::KeptState{}))
+      if (const Slot& s = slots[u]; record_new(s))
         state.pairs.at(group[s.h.a], group[s.h.b]) = {reuse ? s.hint : collision::SatHint{}, s.held};
   d.hits.resize(hits), d.gaps.resize(gaps), d.apart.resize(far);
   for_each_block(slots.size(), kGrainBody, [&](std::size_t b, std::size_t begin, std::size_t end) {
