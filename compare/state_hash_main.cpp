@@ -8,6 +8,7 @@
 // still printed), 2 bad usage or bad input.
 #include "core/memory.hpp"
 #include "cga/backend.hpp"
+#include "core/collision/pair_memory.hpp"
 #include "core/error.hpp"
 #include "core/model/generators.hpp"
 #include "core/model/scene.hpp"
@@ -42,17 +43,21 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   std::string backends = "traditional,cga";
   int threads = 1;
-  bool fine = false;
+  bool fine = false, move_tables = false;
   app.add_option("scenes", files, "scene files")->required();
   app.add_option("--backends", backends, "comma-separated: traditional, cga, pga");
   app.add_option("--threads", threads, "threads the stages may use (1 to 256)");
   app.add_flag("--fine-grains", fine,
                "split every parallel loop into chunks of at most 4 items (slower; runs every parallel path)");
+  app.add_flag("--move-pair-tables", move_tables,
+               "move every entry of the pair tables at each insertion (slower; a pointer kept across one "
+               "then changes the hash)");
   CLI11_PARSE(app, argc, argv);
   int status = 0;
   try {
     core::set_threads(threads);
     core::set_fine_grains(fine);
+    collision::set_move_pair_tables(move_tables);
     std::vector<std::string> names;
     std::stringstream list(backends);
     for (std::string b; std::getline(list, b, ',');) names.push_back(b);

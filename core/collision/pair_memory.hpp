@@ -17,11 +17,29 @@
 // at every round.) The table keeps
 // its storage, so a round allocates nothing once the number of pairs has
 // settled.
+//
+// A reference or pointer into a table holds only until the next insertion,
+// which can rebuild it. The narrowphase's step 4 once wrote pairs' records
+// through pointers taken before it inserted new pairs: only the 10,000-body
+// box's hash showed it, since a growth rarely falls in the same detection as
+// such a write. So the determinism check also runs with every insertion
+// moving every entry (set_move_pair_tables), where any such write lands in
+// the wrong place and changes the run's hash.
 #include <cstdint>
 #include <utility>
 #include <vector>
 
 namespace gacompare::collision {
+
+// For the determinism check (gacompare-state-hash --move-pair-tables): every
+// insertion into a PairMemory rebuilds its table with a new hash salt, so that
+// each entry moves. What a table answers is unchanged; where its entries lie
+// is not. Set before a run, never during one; never faster.
+namespace detail {
+inline bool g_move_pair_tables = false;
+}
+inline void set_move_pair_tables(bool on) { detail::g_move_pair_tables = on; }
+inline bool move_pair_tables() { return detail::g_move_pair_tables; }
 
 template <class T>
 class PairMemory {
@@ -45,6 +63,11 @@ class PairMemory {
       if (!live(s)) values_[at] = T{};
       s.round = round_;
       return values_[at];
+    }
+    if (move_pair_tables()) {
+      salt_ += 0x9E3779B97F4A7C15ull;
+      rebuild(count_ + 1);
+      for (at = home(k); keys_[at].key != kEmpty;) at = (at + 1) & mask_;
     }
     keys_[at] = {k, round_};
     values_[at] = T{};
@@ -100,7 +123,9 @@ class PairMemory {
   static std::uint64_t key(int i, int j) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) | static_cast<std::uint32_t>(j);
   }
-  std::size_t home(std::uint64_t k) const { return static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ull) >> shift_); }
+  std::size_t home(std::uint64_t k) const {
+    return static_cast<std::size_t>(((k ^ salt_) * 0x9E3779B97F4A7C15ull) >> shift_);
+  }
   // The live entries in a table of at least 16 slots and twice `least`, a power of two.
   void rebuild(std::size_t least) {
     std::size_t n = 16;
@@ -126,6 +151,7 @@ class PairMemory {
   std::size_t mask_ = 0, count_ = 0;
   unsigned shift_ = 64;
   std::uint64_t round_ = 0;
+  std::uint64_t salt_ = 0;  // 0 but under set_move_pair_tables
 };
 
 }  // namespace gacompare::collision

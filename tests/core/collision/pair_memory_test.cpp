@@ -61,5 +61,42 @@ TEST(PairMemory, FollowsAMapOverRandomRounds) {
   EXPECT_GT(checked, 50000);
 }
 
+// The determinism check's mode (set_move_pair_tables): an insertion moves the
+// entries, so a pointer kept across it no longer reaches its pair's value,
+// while every answer stays what the rules say (the same random rounds, with
+// every insertion moving the table).
+TEST(PairMemory, MovedTablesMoveEveryEntryAndAnswerTheSame) {
+  set_move_pair_tables(true);
+  PairMemory<int> m;
+  m.next();
+  for (int k = 0; k < 20; ++k) m.at(k, k + 1) = k + 1;
+  int* before = m.find(3, 4);
+  ASSERT_NE(before, nullptr);
+  m.at(100, 101) = 7;  // an insertion
+  int* after = m.find(3, 4);
+  ASSERT_NE(after, nullptr);
+  EXPECT_EQ(*after, 4);
+  EXPECT_NE(before, after);
+  m.at(3, 4) = 5;  // found, not inserted: nothing moves
+  EXPECT_EQ(m.find(3, 4), after);
+
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<int> body(0, 30);
+  PairMemory<int> moved;
+  std::map<std::pair<int, int>, std::pair<int, int>> model;
+  for (int round = 1; round <= 40; ++round) {
+    moved.next();
+    for (int q = 0; q < 60; ++q) {
+      const std::pair<int, int> k{body(rng), body(rng)};
+      const auto it = model.find(k);
+      const int expected = it != model.end() && it->second.second >= round - 1 ? it->second.first : 0;
+      ASSERT_EQ(moved.at(k.first, k.second), expected) << "round " << round;
+      moved.at(k.first, k.second) = round * 100 + q;
+      model[k] = {round * 100 + q, round};
+    }
+  }
+  set_move_pair_tables(false);
+}
+
 }  // namespace
 }  // namespace gacompare::collision
