@@ -32,6 +32,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import box_scene  # noqa: E402
+from runs import RULES, sanity  # noqa: E402
 
 STAGES = ["forces", "integrate", "broadphase", "narrowphase", "time_of_impact", "response"]
 
@@ -85,29 +86,6 @@ def run_size(args, n):
     if done.returncode != 0:
         print(f"scale: N = {n}: gacompare exited {done.returncode}", file=sys.stderr)
     return rows
-
-
-RULES = {"penetration": "sanity: penetration into a static body (m)",
-         "overlap": "sanity: overlap of two moving bodies (m)"}
-
-
-def sanity(report):
-    """Each backend's lines of the report's two depth rules (compare/sanity.cpp):
-    the deepest any body went into a wall, and the deepest two moving bodies
-    went into each other, at a sample, each with its bound and verdict. A run
-    whose bodies end steps inside the walls or squeezed into each other is
-    wrong physics, however fast."""
-    out = {}
-    if not os.path.exists(report):
-        return out
-    for line in open(report):
-        cols = [c.strip() for c in line.strip().strip("|").split("|")]
-        for key, rule in RULES.items():
-            if len(cols) == 6 and cols[2] == rule:
-                verdict = cols[5].replace("**", "")
-                out.setdefault(cols[1], {})[key] = {"value": cols[3], "bound": cols[4], "pass": verdict.startswith("pass"),
-                                                    "note": verdict}
-    return out
 
 
 def table(args, sizes, data):

@@ -1,7 +1,8 @@
 """docs/results/scale.md: boxes of 27 to 1,000 bodies through traditional,
 cga and Bullet (bench/scale/scale.py), the same boxes with no impact search
 (scale.py --time-of-impact none) and without a search to 100,000 bodies on
-two threads, what the narrowphase's reuse saves
+two threads, what the accuracy settings cost on the 10,000-body box
+(bench/scale/settings.py), what the narrowphase's reuse saves
 (bench/scale/reuse.py), what sleeping saves on a settled pile
 (bench/scale/sleep.py) and what a second thread buys (bench/scale/threads.py)."""
 import json
@@ -24,7 +25,7 @@ def series(ctx, name, args):
 
 
 def penetration(rows, backends, rule="penetration"):
-    """Each backend's deepest sample of a depth rule (bench/scale/scale.py RULES:
+    """Each backend's deepest sample of a depth rule (bench/scale/runs.py RULES:
     into a wall, or two moving bodies into each other) as a headline cell,
     FAILS marked."""
     return [f"{b} {rows[b][rule]['value']} m" + ("" if rows[b][rule]["pass"] else " (FAILS)")
@@ -111,6 +112,27 @@ def generate(ctx):
     if exponents:
         headline.append({"finding": f"Cost ∝ N^p from 125 to {int(most):,} bodies without a search, on two threads",
                          "value": "p = " + ", ".join(exponents), "anchor": "#to-100000-bodies"})
+    # What the accuracy settings cost where the time goes: the 10,000-body box
+    # without a search on two threads, collision step by penetration tolerance.
+    settings_args = (["--sizes", "1000", "--repeat", "1", "--duration", "0.3"] if ctx.quick
+                     else ["--sizes", "10000", "--repeat", "3"])
+    settings = strip_command_line(ctx.run(["python3", "bench/scale/settings.py", "--binary", ctx.gacompare,
+                                           *settings_args]))
+    grid = {}  # (step ms, tolerance) -> (N, median s per simulated s)
+    for line in settings.splitlines():
+        cols = [c.strip() for c in line.strip("|").split("|")]
+        if len(cols) == 9 and cols[0].isdigit():
+            grid[(float(cols[1]), float(cols[2]))] = (int(cols[0]), cols[3].split(" ")[0])
+    own = (1.0, 1e-4)  # box_scene.py's collision step (ms) and tolerance (m)
+    if own in grid:
+        cheapest = max(grid)
+        n = grid[own][0]
+        headline.append({"finding": f"What accuracy costs on {n:,} bodies in a box without a search, on two threads: "
+                                    f"run time per simulated second at the box's collision step and penetration "
+                                    f"tolerance, and at the coarsest of the grid",
+                         "value": f"{grid[own][1]} s at {own[0]:g} ms and {own[1]:g} m; {grid[cheapest][1]} s at "
+                                  f"{cheapest[0]:g} ms and {cheapest[1]:g} m",
+                         "anchor": "#what-accuracy-costs-at-10000-bodies"})
     thread_args = ["--sizes", "1000", "--repeat", "1" if ctx.quick else "3"]
     threads = strip_command_line(ctx.run(["python3", "bench/scale/threads.py", "--binary", ctx.gacompare, *thread_args,
                                           "--duration", "1"]))
@@ -149,5 +171,5 @@ def generate(ctx):
                          "value": ", ".join(f"{b} {r:.1%}" for b, r in asleep[n].items()),
                          "anchor": "#what-sleeping-saves"})
     return {"blocks": {"scale": scale, "scale_unsearched": unsearched, "scale_large": large, "reuse": reuse,
-                       "sleep": sleep,
+                       "sleep": sleep, "settings": settings,
                        "threads": threads, "threads_unsearched": threads_unsearched}, "headline": headline}
