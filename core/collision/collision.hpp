@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace gacompare::collision {
@@ -38,6 +39,28 @@ struct Pose {
   Vec3 position = Vec3::Zero();
   Vec3 apply(const Vec3& x) const { return rotation * x + position; }
 };
+
+// How far a unit vector of the body's frame can move between two of its
+// rotations, at most: an upper bound of the spectral norm ‖R1 − R0‖₂ (a
+// point at r from the centre moves by at most this times r).
+//
+// For two rotations Q0, Q1 it is ‖Q1 − Q0‖_F / √2 exactly: Q1 Q0ᵀ has the
+// eigenvalues 1, e^{±iθ}, so Q1 − Q0 has the singular values 0, 2 sin(θ/2)
+// twice, where the Frobenius norm, the bound used before, is √2 times
+// larger. A pose's matrix is a rotation only to rounding (and a scene may
+// integrate the matrix itself), so each Rᵢ is taken as Qᵢ(I + Sᵢ), its polar
+// decomposition: with dᵢ = ‖RᵢᵀRᵢ − I‖_F ≤ 1/2, every eigenvalue μ of Sᵢ
+// has |2μ + μ²| ≤ 1/2, so |μ| ≤ 0.3 and ‖Sᵢ‖_F ≤ dᵢ, and
+//   ‖R1 − R0‖₂ ≤ ‖Q1 − Q0‖_F/√2 + d0 + d1 ≤ ‖R1 − R0‖_F/√2 + (1 + 1/√2)(d0 + d1).
+// Where a matrix is further from a rotation (or turns space inside out),
+// the Frobenius norm, always a bound, is used. Rounding of the sums: the
+// caller's margin.
+inline double rotation_change_bound(const Mat3& r0, const Mat3& r1) {
+  const double frobenius = (r1 - r0).norm();
+  const double d0 = (r0.transpose() * r0 - Mat3::Identity()).norm(), d1 = (r1.transpose() * r1 - Mat3::Identity()).norm();
+  if (!(d0 <= 0.5 && d1 <= 0.5) || !(r0.determinant() > 0 && r1.determinant() > 0)) return frobenius;
+  return std::min(frobenius, frobenius / std::sqrt(2.0) + (1 + 1 / std::sqrt(2.0)) * (d0 + d1 + 1e-15));
+}
 
 // A convex body where it is: the mesh (owned elsewhere) and its pose.
 struct Placed {
