@@ -16,8 +16,8 @@ where the time goes (narrowphase pairs, push-out detections, islands
 stepped again alone); and the two depth rules of the report's physical
 sanity checks (compare/sanity.cpp) at the samples: the deepest any body went
 into a wall, and the deepest two moving bodies went into each other, each
-FAILS where it broke the rule (ten tolerances, and one step's travel). The
-backends part within tenths of a second (the box is chaotic), so each
+FAILS where it broke the rule (ten tolerances, and one step's travel). Two
+settings' runs part within tenths of a second (the box is chaotic), so each
 setting's pile is its own.
 """
 import os
