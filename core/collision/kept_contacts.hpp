@@ -197,9 +197,9 @@ inline bool refresh(const KeptContacts& k, const Mesh& ma, const Mesh& mb, const
   const double across = (dt - along * n_ab).norm();
   if (!(across <= kKeepSlide * size)) return false;
   const Mat3 rotation = relative_rotation(pa, pb);
-  // The largest distance a unit vector of b's frame turned (the spectral norm
-  // of ΔR − I, 2 sin(θ/2)); the Frobenius norm is √2 times it for a rotation.
-  const double turn = (k.rotation.transpose() * rotation - Mat3::Identity()).norm() / std::sqrt(2.0) * size;
+  // The largest distance a unit vector of b's frame turned relative to a's
+  // (the spectral norm of the change, 2 sin(θ/2): rotation_change_bound).
+  const double turn = rotation_change_bound(k.rotation, rotation) * size;
   const double slide = across + turn;
   if (!(slide <= kKeepSlide * size) || !(turn - along < k.left_out)) return false;
   // The choices (FaceChoice): each compares two gaps, which a translation
