@@ -38,6 +38,9 @@
 //     every wall stays clean.
 #include "compare/check.hpp"
 
+#include <cstddef>
+#include <span>
+#include <utility>
 #include <vector>
 
 namespace gacompare::compare {
@@ -103,5 +106,15 @@ CheckLine overlap_check(const core::Scene& scene, const core::Run& run);
 // The failing lines, one sentence each ("traditional: energy rose ..."), for
 // report.md's warnings.
 std::vector<std::string> sanity_warnings(const std::vector<CheckLine>& lines);
+
+// The pairs (i < j) of the bodies `which` whose spheres (centre, radius),
+// each grown by grow[i] (by nothing where grow is empty), meet: those with
+// |c_i − c_j| − r_i − r_j < grow_i + grow_j (NaN meets everything), each once,
+// in an order fixed by the input. Every rule above that looks at pairs of
+// bodies takes them from here (sanity.cpp says how it finds them).
+std::vector<std::pair<std::size_t, std::size_t>> near_pairs(std::span<const core::Vec3> centres,
+                                                            std::span<const double> radius,
+                                                            std::span<const std::size_t> which,
+                                                            std::span<const double> grow);
 
 }  // namespace gacompare::compare

@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -575,6 +576,48 @@ TEST(Sanity, WithBoundsPerBodyTheDeepestPairIsReported) {
   EXPECT_TRUE(passes(wall)) << wall.note;
   EXPECT_NEAR(wall.value, 3e-3, 1e-12);
   EXPECT_NEAR(wall.bound, 10 * kTol + 1e-3 * 3, 1e-12);
+}
+
+// The pairs every pairwise rule looks at (compare::near_pairs), against every
+// pair tested: the same set, each pair once and (i < j), over seeded crowds
+// with a floor a hundred times their size, bodies flung fast (grown a metre),
+// a body at NaN, bodies a billion metres out (the grid's clamped cells), and a
+// subset of the bodies asked for.
+TEST(Sanity, NearPairsAreThePairsEveryPairTestFinds) {
+  std::mt19937 rng(20261207);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int round = 0; round < 20; ++round) {
+    const std::size_t n = 50 + 40 * static_cast<std::size_t>(round);
+    std::vector<Vec3> c(n);
+    std::vector<double> r(n), grow(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      c[i] = Vec3(2 * u(rng), 2 * u(rng), 2 * u(rng));
+      r[i] = 0.02 + 0.2 * u(rng);
+      grow[i] = round % 2 ? 0.0 : 0.02 * u(rng);
+    }
+    r[0] = 10, c[0] = Vec3(1, 1, -10);  // a floor
+    grow[1] = 1.0, grow[2] = 0.5;       // flung fast
+    c[3] = Vec3(1e9, 0, 0), c[4] = Vec3(1e9 + 0.05, 0, 0);  // far out, touching
+    if (round % 3 == 0) c[5] = Vec3(std::nan(""), 0, 0);     // lost: it meets everything
+    std::vector<std::size_t> which;
+    for (std::size_t i = 0; i < n; ++i)
+      if (round % 4 != 1 || i % 3 != 0) which.push_back(i);
+    const auto got = compare::near_pairs(c, r, which, round % 5 == 4 ? std::vector<double>{} : grow);
+    std::vector<std::pair<std::size_t, std::size_t>> want;
+    for (std::size_t a = 0; a < which.size(); ++a)
+      for (std::size_t b = a + 1; b < which.size(); ++b) {
+        const std::size_t i = which[a], j = which[b];
+        const double g = round % 5 == 4 ? 0.0 : grow[i] + grow[j];
+        if (!((c[i] - c[j]).norm() - r[i] - r[j] >= g)) want.emplace_back(std::min(i, j), std::max(i, j));
+      }
+    auto sorted = got;
+    std::sort(sorted.begin(), sorted.end());
+    std::sort(want.begin(), want.end());
+    ASSERT_GT(want.size(), n / 2) << round;  // crowded: the case has pairs to find
+    EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << round << ": a pair twice";
+    EXPECT_EQ(sorted, want) << round;
+    for (const auto& [i, j] : got) EXPECT_LT(i, j) << round;
+  }
 }
 
 }  // namespace
