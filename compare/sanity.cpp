@@ -112,35 +112,12 @@ bool spheres_apart(const SceneFacts& w, const Posed& a, std::size_t ia, const Po
   return (a.c - b.c).norm() - w.radius[ia] - w.radius[ib] >= by;
 }
 
-// Each rule that tested every pair of bodies made the sanity checks of a
-// 100,000-body run take 25 s after its 0.3 s of simulation (10^10 sphere
-// tests per sample); they take their pairs from near_pairs (below).
-// The pairs of `which` whose spheres at `posed`, grown by `grow`, meet.
-std::vector<std::pair<std::size_t, std::size_t>> near_pairs(const SceneFacts& w, const std::vector<Posed>& posed,
-                                                            const std::vector<std::size_t>& which,
-                                                            const std::vector<double>& grow) {
-  std::vector<Vec3> centres(posed.size());
-  for (const std::size_t i : which) centres[i] = posed[i].c;
-  return compare::near_pairs(centres, std::span<const double>(w.radius).first(std::min(w.radius.size(), posed.size())), which,
-                    grow);
+// Each body's centre at a sample, for SphereGrid.
+std::vector<Vec3> centres_of(const std::vector<Posed>& posed) {
+  std::vector<Vec3> out(posed.size());
+  for (std::size_t i = 0; i < posed.size(); ++i) out[i] = posed[i].c;
+  return out;
 }
-
-// Each body's partners among `pairs` (each pair once, either way round):
-// body i's are partner[first[i] .. first[i + 1]), ascending.
-struct Partners {
-  std::vector<std::size_t> first, partner;
-  Partners(std::size_t n, std::vector<std::pair<std::size_t, std::size_t>> pairs) : first(n + 1, 0) {
-    const std::size_t m = pairs.size();
-    for (std::size_t k = 0; k < m; ++k) pairs.emplace_back(pairs[k].second, pairs[k].first);
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    for (const auto& p : pairs) ++first[p.first + 1], partner.push_back(p.second);
-    for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
-  }
-  std::span<const std::size_t> of(std::size_t i) const {
-    return {partner.data() + first[i], first[i + 1] - first[i]};
-  }
-};
 
 // The step a run takes its contacts at, without a time of impact: Bullet's
 // fixed step, or our collision step where the scene asks for no search; 0 for
@@ -218,15 +195,18 @@ std::vector<int> stack_levels(const SceneFacts& w, const std::vector<Posed>& pos
   std::sort(order.begin(), order.end(), [&](auto a, auto b) { return height(a) < height(b); });
   // The pairs within the tolerance: grown by half of it each (and a margin
   // for the sum's rounding), a superset of those the test below keeps.
-  const Partners near(posed.size(),
-                      near_pairs(w, posed, order, std::vector<double>(posed.size(), 0.5 * w.tol * (1 + 1e-9) + 1e-15)));
+  const std::vector<Vec3> centres = centres_of(posed);
+  const std::vector<double> grow(posed.size(), 0.5 * w.tol * (1 + 1e-9) + 1e-15);
+  const SphereGrid grid(centres, std::span<const double>(w.radius).first(posed.size()), order, grow);
   std::vector<int> level(posed.size(), 0);
   for (const std::size_t i : order) {  // every lower body's level is final before a higher one reads it
     level[i] = 1;
-    for (const std::size_t j : near.of(i))
+    grid.near(i, [&](std::size_t j) {
       if (height(j) < height(i) && !spheres_apart(w, posed[i], i, posed[j], j, w.tol) &&
           face_gap(posed[i], posed[j]) <= w.tol)
         level[i] = std::max(level[i], level[j] + 1);
+      return true;
+    });
   }
   return level;
 }
@@ -371,7 +351,8 @@ CheckLine overlap(const SceneFacts& w, const core::Scene& scene, const core::Run
       if (!posed[i].c.allFinite() && lost.empty())
         lost = scene.bodies[i].name + "'s position is not finite at t = " + num(s.t) + " s";
     if (!lost.empty()) break;
-    for (const auto& [i, j] : near_pairs(w, posed, moving, {})) {
+    const std::vector<Vec3> centres = centres_of(posed);
+    for (const auto& [i, j] : SphereGrid(centres, std::span<const double>(w.radius).first(posed.size()), moving, {}).pairs()) {
       const double bound = base + step * (v_max[i] + v_max[j]);
       // As in rule 2: −face_gap bounds two polyhedra's depth from above, so
       // the exact depth is taken only where it could change the line.
@@ -484,36 +465,36 @@ std::vector<CheckLine> lateral_drift(const SceneFacts& w, const core::Scene& sce
     const auto& s1 = run.samples[k + 1];
     next = pose_all(w, s1);
     const double dt = s1.t - s0.t;
-    // Each body's partners in this interval: those whose spheres, grown by
-    // what the two could close in it (the reach below, half to each, with a
-    // margin for the sums' rounding), meet at either sample.
+    // Each body's partners at each sample: those whose spheres, grown by
+    // what the two could close in this interval (the reach below, half to
+    // each, with a margin for the sums' rounding), meet. Asked body by body
+    // and left at the first that rules the body out: with samples 0.5 s
+    // apart, a falling body's reach spans the box.
     std::vector<double> grow(n);
     for (std::size_t i = 0; i < n; ++i)
       grow[i] = (dt * std::max(speed(s0, i), speed(s1, i)) + 0.5 * (w.g * dt * dt + band)) * (1 + 1e-9) + 1e-15;
-    std::vector<std::pair<std::size_t, std::size_t>> pairs;
-    for (const auto* posed : {&here, &next}) {
-      const auto found = near_pairs(w, *posed, every, grow);
-      pairs.insert(pairs.end(), found.begin(), found.end());
-    }
-    const Partners near(n, std::move(pairs));
+    const std::vector<Vec3> c0 = centres_of(here), c1 = centres_of(next);
+    const std::span<const double> radii = std::span<const double>(w.radius).first(n);
+    const SphereGrid grid0(c0, radii, every, grow), grid1(c1, radii, every, grow);
     for (std::size_t i = 0; i < n; ++i) {
       if (w.is_static[i]) continue;
       bool ok = resting[i][k] && resting[i][k + 1] && dt > 0;
       for (const auto& p : fx.pushes)
         ok = ok && !(p.body == i && p.from < s1.t && p.until > s0.t);
-      for (const std::size_t j : near.of(i)) {
-        if (!ok) break;
+      // Whether j leaves i's rest to be judged at `posed`: apart, or touching
+      // it only across a level face, without friction.
+      const auto fine = [&](const std::vector<Posed>& posed, std::size_t j) {
         // What the two could close in this interval: both speeds (with the
         // rotation's sweep), gravity's change of velocity, and the band.
         const double reach = dt * (std::max(speed(s0, i), speed(s1, i)) + std::max(speed(s0, j), speed(s1, j))) +
                              w.g * dt * dt + band;
-        for (const auto* posed : {&here, &next}) {
-          const Posed &a = (*posed)[i], &b = (*posed)[j];
-          if (spheres_apart(w, a, i, b, j, reach) || face_gap(a, b) >= reach) continue;
-          if (scene.bodies[i].friction * scene.bodies[j].friction > 0) ok = false;  // friction pushes sideways
-          if (!across_level_face(w, b, a, band, reach) && !across_level_face(w, a, b, band, reach)) ok = false;
-        }
-      }
+        const Posed &a = posed[i], &b = posed[j];
+        if (spheres_apart(w, a, i, b, j, reach) || face_gap(a, b) >= reach) return true;
+        if (scene.bodies[i].friction * scene.bodies[j].friction > 0) return false;  // friction pushes sideways
+        return across_level_face(w, b, a, band, reach) || across_level_face(w, a, b, band, reach);
+      };
+      ok = ok && grid0.near(i, [&](std::size_t j) { return fine(here, j); }) &&
+           grid1.near(i, [&](std::size_t j) { return fine(next, j); });
       Stretch& st = open[i];
       if (!ok) {
         close(i);
@@ -635,77 +616,35 @@ CheckLine penetration_check(const core::Scene& scene, const core::Run& run) {
   return penetration(w, scene, run);
 }
 
-// A uniform grid of cell 2R over the centres (R the largest grown radius),
-// so each body's partners lie in its own cell and the 26 around it. A
-// one-axis sweep would not do: in a 20-layer pyramid each cube's x-interval
-// holds a thousand others. Bodies whose grown radius is far above the rest
-// (a floor, a long plank, a body flung fast: more than kLargeGrown times the
-// median) would make every cell hold everything, and a body at a non-finite
-// position has no cell: each of those is paired with every body instead.
-std::vector<std::pair<std::size_t, std::size_t>> near_pairs(std::span<const Vec3> centres, std::span<const double> radius,
-                                                            std::span<const std::size_t> which,
-                                                            std::span<const double> grow) {
-  constexpr double kLargeGrown = 4;
-  std::vector<std::pair<std::size_t, std::size_t>> out;
-  if (which.empty()) return out;
+SphereGrid::SphereGrid(std::span<const Vec3> centres, std::span<const double> radius, std::span<const std::size_t> which,
+                       std::span<const double> grow)
+    : centres_(centres), radius_(radius), grow_(grow), which_(which.begin(), which.end()) {
+  alone_flag_.assign(centres.size(), 0);
+  if (which.empty()) return;
   const auto grown = [&](std::size_t i) { return radius[i] + (grow.empty() ? 0.0 : grow[i]); };
-  // As spheres_apart: the gap between the spheres against the two growths.
-  const auto near = [&](std::size_t i, std::size_t j) {
-    return !((centres[i] - centres[j]).norm() - radius[i] - radius[j] >= (grow.empty() ? 0.0 : grow[i] + grow[j]));
-  };
-  const auto add = [&](std::size_t i, std::size_t j) {
-    if (near(i, j)) out.emplace_back(std::min(i, j), std::max(i, j));
-  };
   std::vector<double> sizes;
   sizes.reserve(which.size());
   for (const std::size_t i : which) sizes.push_back(grown(i));
   const auto mid = sizes.begin() + static_cast<long>(sizes.size() / 2);
   std::nth_element(sizes.begin(), mid, sizes.end());
   const double large = kLargeGrown * *mid;
-  std::vector<std::size_t> grid, alone;
   double r_max = 0;
-  for (const std::size_t i : which) {
-    if (!(grown(i) <= large) || !centres[i].allFinite()) {
-      alone.push_back(i);
-    } else {
-      grid.push_back(i), r_max = std::max(r_max, grown(i));
-    }
-  }
-  const double cell = r_max > 0 ? 2 * r_max : 1.0;
-  // Cells clamped to ±2^20 per axis: a body flung a million cells out shares a
-  // boundary cell with others there, which costs tests, not pairs.
-  constexpr long kSpan = 1L << 20;
-  const auto index = [&](double x) {
-    return std::clamp(static_cast<long>(std::floor(x / cell)), -kSpan + 2, kSpan - 2);
-  };
-  const auto key = [](long x, long y, long z) {
-    return (static_cast<std::uint64_t>(x + kSpan) << 42) | (static_cast<std::uint64_t>(y + kSpan) << 21) |
-           static_cast<std::uint64_t>(z + kSpan);
-  };
-  std::vector<std::pair<std::uint64_t, std::size_t>> cells;
-  cells.reserve(grid.size());
-  for (const std::size_t i : grid) {
-    const Vec3& c = centres[i];
-    cells.emplace_back(key(index(c.x()), index(c.y()), index(c.z())), i);
-  }
-  std::sort(cells.begin(), cells.end());
-  for (const std::size_t i : grid) {
-    const Vec3& c = centres[i];
-    const long x = index(c.x()), y = index(c.y()), z = index(c.z());
-    for (long dx = -1; dx <= 1; ++dx)
-      for (long dy = -1; dy <= 1; ++dy)
-        for (long dz = -1; dz <= 1; ++dz) {
-          const std::uint64_t k = key(x + dx, y + dy, z + dz);
-          auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(k, std::size_t{0}));
-          for (; it != cells.end() && it->first == k; ++it)
-            if (it->second > i) add(i, it->second);
-        }
-  }
-  // The large and the lost with every body (another large one once).
-  for (std::size_t a = 0; a < alone.size(); ++a) {
-    for (const std::size_t j : grid) add(alone[a], j);
-    for (std::size_t b = a + 1; b < alone.size(); ++b) add(alone[a], alone[b]);
-  }
+  for (const std::size_t i : which)
+    if (!(grown(i) <= large) || !centres[i].allFinite()) alone_.push_back(i), alone_flag_[i] = 1;
+    else r_max = std::max(r_max, grown(i));
+  cell_ = r_max > 0 ? 2 * r_max : 1.0;
+  for (const std::size_t i : which)
+    if (!alone_flag_[i]) cells_.emplace_back(key(index(centres[i].x()), index(centres[i].y()), index(centres[i].z())), i);
+  std::sort(cells_.begin(), cells_.end());
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> SphereGrid::pairs() const {
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (const std::size_t i : which_)
+    near(i, [&](std::size_t j) {
+      if (j > i) out.emplace_back(i, j);
+      return true;
+    });
   return out;
 }
 

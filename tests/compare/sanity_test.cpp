@@ -578,11 +578,12 @@ TEST(Sanity, WithBoundsPerBodyTheDeepestPairIsReported) {
   EXPECT_NEAR(wall.bound, 10 * kTol + 1e-3 * 3, 1e-12);
 }
 
-// The pairs every pairwise rule looks at (compare::near_pairs), against every
-// pair tested: the same set, each pair once and (i < j), over seeded crowds
-// with a floor a hundred times their size, bodies flung fast (grown a metre),
-// a body at NaN, bodies a billion metres out (the grid's clamped cells), and a
-// subset of the bodies asked for.
+// The pairs every pairwise rule looks at (compare::SphereGrid), against every
+// pair tested: the same set, each pair once and (i < j), and each body's
+// partners the same set, over seeded crowds with a floor a hundred times their
+// size, bodies flung fast (grown a metre), a body at NaN, bodies a billion
+// metres out (the grid's clamped cells), and a subset of the bodies asked for.
+// A query stops where its visitor says so.
 TEST(Sanity, NearPairsAreThePairsEveryPairTestFinds) {
   std::mt19937 rng(20261207);
   std::uniform_real_distribution<double> u(0, 1);
@@ -602,7 +603,9 @@ TEST(Sanity, NearPairsAreThePairsEveryPairTestFinds) {
     std::vector<std::size_t> which;
     for (std::size_t i = 0; i < n; ++i)
       if (round % 4 != 1 || i % 3 != 0) which.push_back(i);
-    const auto got = compare::near_pairs(c, r, which, round % 5 == 4 ? std::vector<double>{} : grow);
+    const std::vector<double> grown = round % 5 == 4 ? std::vector<double>{} : grow;
+    const compare::SphereGrid grid(c, r, which, grown);
+    const auto got = grid.pairs();
     std::vector<std::pair<std::size_t, std::size_t>> want;
     for (std::size_t a = 0; a < which.size(); ++a)
       for (std::size_t b = a + 1; b < which.size(); ++b) {
@@ -617,6 +620,18 @@ TEST(Sanity, NearPairsAreThePairsEveryPairTestFinds) {
     EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << round << ": a pair twice";
     EXPECT_EQ(sorted, want) << round;
     for (const auto& [i, j] : got) EXPECT_LT(i, j) << round;
+    for (const std::size_t i : which) {
+      std::vector<std::size_t> mine, theirs;
+      grid.near(i, [&](std::size_t j) { return mine.push_back(j), true; });
+      for (const auto& [a, b] : want)
+        if (a == i || b == i) theirs.push_back(a == i ? b : a);
+      std::sort(mine.begin(), mine.end());
+      ASSERT_EQ(mine, theirs) << round << " body " << i;
+      if (theirs.size() < 2) continue;
+      int asked = 0;
+      EXPECT_FALSE(grid.near(i, [&](std::size_t) { return ++asked < 2; })) << round;
+      EXPECT_EQ(asked, 2) << round;  // stopped at the visitor's word
+    }
   }
 }
 
