@@ -197,7 +197,7 @@ std::vector<int> stack_levels(const SceneFacts& w, const std::vector<Posed>& pos
   // for the sum's rounding), a superset of those the test below keeps.
   const std::vector<Vec3> centres = centres_of(posed);
   const std::vector<double> grow(posed.size(), 0.5 * w.tol * (1 + 1e-9) + 1e-15);
-  const SphereGrid grid(centres, std::span<const double>(w.radius).first(posed.size()), order, grow);
+  const SphereGrid grid(centres, std::span<const double>(w.radius), order, grow);
   std::vector<int> level(posed.size(), 0);
   for (const std::size_t i : order) {  // every lower body's level is final before a higher one reads it
     level[i] = 1;
@@ -352,7 +352,7 @@ CheckLine overlap(const SceneFacts& w, const core::Scene& scene, const core::Run
         lost = scene.bodies[i].name + "'s position is not finite at t = " + num(s.t) + " s";
     if (!lost.empty()) break;
     const std::vector<Vec3> centres = centres_of(posed);
-    for (const auto& [i, j] : SphereGrid(centres, std::span<const double>(w.radius).first(posed.size()), moving, {}).pairs()) {
+    for (const auto& [i, j] : SphereGrid(centres, std::span<const double>(w.radius), moving, {}).pairs()) {
       const double bound = base + step * (v_max[i] + v_max[j]);
       // As in rule 2: −face_gap bounds two polyhedra's depth from above, so
       // the exact depth is taken only where it could change the line.
@@ -474,7 +474,7 @@ std::vector<CheckLine> lateral_drift(const SceneFacts& w, const core::Scene& sce
     for (std::size_t i = 0; i < n; ++i)
       grow[i] = (dt * std::max(speed(s0, i), speed(s1, i)) + 0.5 * (w.g * dt * dt + band)) * (1 + 1e-9) + 1e-15;
     const std::vector<Vec3> c0 = centres_of(here), c1 = centres_of(next);
-    const std::span<const double> radii = std::span<const double>(w.radius).first(n);
+    const std::span<const double> radii = std::span<const double>(w.radius);
     const SphereGrid grid0(c0, radii, every, grow), grid1(c1, radii, every, grow);
     for (std::size_t i = 0; i < n; ++i) {
       if (w.is_static[i]) continue;
