@@ -619,23 +619,33 @@ CheckLine penetration_check(const core::Scene& scene, const core::Run& run) {
 SphereGrid::SphereGrid(std::span<const Vec3> centres, std::span<const double> radius, std::span<const std::size_t> which,
                        std::span<const double> grow)
     : centres_(centres), radius_(radius), grow_(grow), which_(which.begin(), which.end()) {
-  alone_flag_.assign(centres.size(), 0);
-  if (which.empty()) return;
-  const auto grown = [&](std::size_t i) { return radius[i] + (grow.empty() ? 0.0 : grow[i]); };
-  std::vector<double> sizes;
-  sizes.reserve(which.size());
-  for (const std::size_t i : which) sizes.push_back(grown(i));
-  const auto mid = sizes.begin() + static_cast<long>(sizes.size() / 2);
-  std::nth_element(sizes.begin(), mid, sizes.end());
-  const double large = kLargeGrown * *mid;
-  double r_max = 0;
-  for (const std::size_t i : which)
-    if (!(grown(i) <= large) || !centres[i].allFinite()) alone_.push_back(i), alone_flag_[i] = 1;
-    else r_max = std::max(r_max, grown(i));
-  cell_ = r_max > 0 ? 2 * r_max : 1.0;
-  for (const std::size_t i : which)
-    if (!alone_flag_[i]) cells_.emplace_back(key(index(centres[i].x()), index(centres[i].y()), index(centres[i].z())), i);
-  std::sort(cells_.begin(), cells_.end());
+  // Each body's class: the binary exponent of its grown radius.
+  std::vector<std::pair<int, std::size_t>> by_class;
+  for (const std::size_t i : which) {
+    if (lost(i)) {
+      lost_.push_back(i);
+      continue;
+    }
+    int e = 0;
+    std::frexp(grown(i), &e);
+    by_class.emplace_back(e, i);
+  }
+  std::stable_sort(by_class.begin(), by_class.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t k = 0; k < by_class.size();) {
+    std::size_t end = k;
+    Level l;
+    while (end < by_class.size() && by_class[end].first == by_class[k].first)
+      l.largest = std::max(l.largest, grown(by_class[end].second)), ++end;
+    l.cell = l.largest > 0 ? 2 * l.largest : 1.0;
+    for (std::size_t u = k; u < end; ++u) {
+      const Vec3& c = centres[by_class[u].second];
+      l.cells.emplace_back(key(l.index(c.x()), l.index(c.y()), l.index(c.z())), by_class[u].second);
+    }
+    std::sort(l.cells.begin(), l.cells.end());
+    levels_.push_back(std::move(l));
+    k = end;
+  }
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> SphereGrid::pairs() const {

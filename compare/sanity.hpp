@@ -39,6 +39,7 @@
 #include "compare/check.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -117,16 +118,18 @@ std::vector<std::string> sanity_warnings(const std::vector<CheckLine>& lines);
 // never every pair: testing every pair made the checks of a 100,000-body box
 // take 25 s for three samples.
 //
-// A uniform grid of cell 2R over the centres (R the largest grown radius),
-// so that a body's partners lie in its own cell and the 26 around it. A
-// one-axis sweep would not do: in a 20-layer pyramid each cube's x-interval
-// holds a thousand others. A body whose grown radius is far above the rest
-// (a floor, a long plank, a body flung fast: more than kLargeGrown times the
-// median) would make every cell hold everything, and one at a non-finite
-// position has no cell: each of those is asked about every body instead.
+// A uniform grid per size class (grown radii within a factor of two), of
+// cell twice the class's largest, over the centres: a body's partners in a
+// class lie in the cells its sphere grown by that largest radius overlaps,
+// three a side for a body of the class's size. One grid for all sizes would
+// make every cell hold everything once one body is large (a floor, a body
+// flung fast); a one-axis sweep would not do either: in a 20-layer pyramid
+// each cube's x-interval holds a thousand others. Where a large body's
+// query would cover more cells than a class has bodies, it reads the class
+// body by body; a body at a non-finite position or of non-finite size has
+// no cell and is asked about every body.
 class SphereGrid {
  public:
-  static constexpr double kLargeGrown = 4;
   SphereGrid(std::span<const core::Vec3> centres, std::span<const double> radius, std::span<const std::size_t> which,
              std::span<const double> grow);
   // f(j) for each body j ≠ i of `which` near body i (of `which`), in a fixed
@@ -134,24 +137,31 @@ class SphereGrid {
   template <class F>
   bool near(std::size_t i, F&& f) const {
     const auto call = [&](std::size_t j) { return j == i || !meets(i, j) || f(j); };
-    if (alone_flag_[i]) {
-      for (const auto& [key, j] : cells_)
-        if (!call(j)) return false;
-    } else {
-      const core::Vec3& c = centres_[i];
-      const long x = index(c.x()), y = index(c.y()), z = index(c.z());
-      for (long dx = -1; dx <= 1; ++dx)
-        for (long dy = -1; dy <= 1; ++dy)
-          for (long dz = -1; dz <= 1; ++dz) {
-            const std::uint64_t k = key(x + dx, y + dy, z + dz);
-            for (auto it = std::lower_bound(cells_.begin(), cells_.end(), std::make_pair(k, std::size_t{0}));
-                 it != cells_.end() && it->first == k; ++it)
+    const core::Vec3& c = centres_[i];
+    if (lost(i)) return std::all_of(which_.begin(), which_.end(), call);
+    for (const Level& l : levels_) {
+      // The class's bodies that can meet i have centres within `reach` of
+      // c on every axis (widened for the rounding of the sums).
+      const double reach = (grown(i) + l.largest) * (1 + 1e-9) + 1e-12 * (1 + c.cwiseAbs().maxCoeff());
+      std::array<long, 3> lo{}, hi{};
+      double cells = 1;
+      for (int a = 0; a < 3; ++a)
+        lo[a] = l.index(c[a] - reach), hi[a] = l.index(c[a] + reach), cells *= static_cast<double>(hi[a] - lo[a] + 1);
+      if (cells > static_cast<double>(l.cells.size())) {
+        for (const auto& entry : l.cells)
+          if (!call(entry.second)) return false;
+        continue;
+      }
+      for (long x = lo[0]; x <= hi[0]; ++x)
+        for (long y = lo[1]; y <= hi[1]; ++y)
+          for (long z = lo[2]; z <= hi[2]; ++z) {
+            const std::uint64_t k = key(x, y, z);
+            for (auto it = std::lower_bound(l.cells.begin(), l.cells.end(), std::make_pair(k, std::size_t{0}));
+                 it != l.cells.end() && it->first == k; ++it)
               if (!call(it->second)) return false;
           }
     }
-    for (const std::size_t j : alone_)
-      if (!call(j)) return false;
-    return true;
+    return std::all_of(lost_.begin(), lost_.end(), call);
   }
   // Every pair (i < j) near each other, each once, in a fixed order.
   std::vector<std::pair<std::size_t, std::size_t>> pairs() const;
@@ -160,11 +170,17 @@ class SphereGrid {
   // Cells clamped to ±2^20 per axis: a body flung a million cells out shares
   // a boundary cell with others there, which costs tests, not pairs.
   static constexpr long kSpan = 1L << 20;
-  long index(double x) const { return std::clamp(static_cast<long>(std::floor(x / cell_)), -kSpan + 2, kSpan - 2); }
   static std::uint64_t key(long x, long y, long z) {
     return (static_cast<std::uint64_t>(x + kSpan) << 42) | (static_cast<std::uint64_t>(y + kSpan) << 21) |
            static_cast<std::uint64_t>(z + kSpan);
   }
+  struct Level {
+    double largest = 0, cell = 1;
+    std::vector<std::pair<std::uint64_t, std::size_t>> cells;  // (cell, body), sorted
+    long index(double x) const { return std::clamp(static_cast<long>(std::floor(x / cell)), -kSpan + 2, kSpan - 2); }
+  };
+  double grown(std::size_t i) const { return radius_[i] + (grow_.empty() ? 0.0 : grow_[i]); }
+  bool lost(std::size_t i) const { return !centres_[i].allFinite() || !std::isfinite(grown(i)); }
   bool meets(std::size_t i, std::size_t j) const {
     const double g = grow_.empty() ? 0.0 : grow_[i] + grow_[j];
     return !((centres_[i] - centres_[j]).norm() - radius_[i] - radius_[j] >= g);
@@ -172,10 +188,8 @@ class SphereGrid {
   std::span<const core::Vec3> centres_;
   std::span<const double> radius_, grow_;
   std::vector<std::size_t> which_;
-  double cell_ = 1;
-  std::vector<std::pair<std::uint64_t, std::size_t>> cells_;  // (cell, body), sorted: the grid's bodies
-  std::vector<std::size_t> alone_;                             // the others, asked about every body
-  std::vector<char> alone_flag_;                               // by body
+  std::vector<Level> levels_;      // by size class, smallest first
+  std::vector<std::size_t> lost_;  // bodies at non-finite positions or of non-finite size
 };
 
 }  // namespace gacompare::compare

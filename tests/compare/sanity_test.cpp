@@ -581,8 +581,9 @@ TEST(Sanity, WithBoundsPerBodyTheDeepestPairIsReported) {
 // The pairs every pairwise rule looks at (compare::SphereGrid), against every
 // pair tested: the same set, each pair once and (i < j), and each body's
 // partners the same set, over seeded crowds with a floor a hundred times their
-// size, bodies flung fast (grown a metre), a body at NaN, bodies a billion
-// metres out (the grid's clamped cells), and a subset of the bodies asked for.
+// size, bodies flung fast (grown a metre), boulders among pebbles, a body at
+// NaN or of NaN size, bodies a billion metres out (the grid's clamped cells),
+// and a subset of the bodies asked for.
 // A query stops where its visitor says so.
 TEST(Sanity, NearPairsAreThePairsEveryPairTestFinds) {
   std::mt19937 rng(20261207);
@@ -598,6 +599,9 @@ TEST(Sanity, NearPairsAreThePairsEveryPairTestFinds) {
     }
     r[0] = 10, c[0] = Vec3(1, 1, -10);  // a floor
     grow[1] = 1.0, grow[2] = 0.5;       // flung fast
+    if (round % 3 == 2)                 // boulders among pebbles: half the bodies ten times the others
+      for (std::size_t i = 6; i < n; i += 2) r[i] *= 10;
+    if (round % 6 == 1) grow[6] = std::nan("");  // a size not known: it meets everything
     c[3] = Vec3(1e9, 0, 0), c[4] = Vec3(1e9 + 0.05, 0, 0);  // far out, touching
     if (round % 3 == 0) c[5] = Vec3(std::nan(""), 0, 0);     // lost: it meets everything
     std::vector<std::size_t> which;
