@@ -109,7 +109,7 @@ double face_gap(const Posed& a, const Posed& b) {
 }
 
 bool spheres_apart(const SceneFacts& w, const Posed& a, std::size_t ia, const Posed& b, std::size_t ib, double by) {
-  return (a.c - b.c).norm() - w.radius[ia] - w.radius[ib] >= by;
+  return sphere_gap(a.c, b.c, w.radius[ia], w.radius[ib]) >= by;
 }
 
 // Each body's centre at a sample, for SphereGrid.
@@ -460,6 +460,7 @@ std::vector<CheckLine> lateral_drift(const SceneFacts& w, const core::Scene& sce
   std::vector<std::size_t> every(n);
   std::iota(every.begin(), every.end(), std::size_t{0});
   std::vector<Posed> here = pose_all(w, run.samples[0]), next;
+  std::vector<Vec3> c0 = centres_of(here), c1;
   for (std::size_t k = 0; k + 1 < count; ++k) {
     const auto& s0 = run.samples[k];
     const auto& s1 = run.samples[k + 1];
@@ -473,7 +474,7 @@ std::vector<CheckLine> lateral_drift(const SceneFacts& w, const core::Scene& sce
     std::vector<double> grow(n);
     for (std::size_t i = 0; i < n; ++i)
       grow[i] = (dt * std::max(speed(s0, i), speed(s1, i)) + 0.5 * (w.g * dt * dt + band)) * (1 + 1e-9) + 1e-15;
-    const std::vector<Vec3> c0 = centres_of(here), c1 = centres_of(next);
+    c1 = centres_of(next);
     const std::span<const double> radii = std::span<const double>(w.radius);
     const SphereGrid grid0(c0, radii, every, grow), grid1(c1, radii, every, grow);
     for (std::size_t i = 0; i < n; ++i) {
@@ -509,6 +510,7 @@ std::vector<CheckLine> lateral_drift(const SceneFacts& w, const core::Scene& sce
       st.drift = std::max(st.drift, (lateral(w, b1.position) - st.x0 - st.integral).norm());
     }
     here.swap(next);
+    c0.swap(c1);
   }
   for (std::size_t i = 0; i < n; ++i) close(i);
   if (stretches == 0) return both("not checked: no body rested on level faces alone");

@@ -111,6 +111,12 @@ CheckLine overlap_check(const core::Scene& scene, const core::Run& run);
 // report.md's warnings.
 std::vector<std::string> sanity_warnings(const std::vector<CheckLine>& lines);
 
+// The gap between two spheres (negative where they overlap): every rule's
+// sphere test, and SphereGrid's.
+inline double sphere_gap(const core::Vec3& a, const core::Vec3& b, double ra, double rb) {
+  return (a - b).norm() - ra - rb;
+}
+
 // Which of the bodies `which` are near one another: those whose spheres
 // (centre, radius), each grown by grow[i] (by nothing where grow is empty),
 // meet, |c_i − c_j| − r_i − r_j < grow_i + grow_j (a NaN centre meets
@@ -183,7 +189,7 @@ class SphereGrid {
   bool lost(std::size_t i) const { return !centres_[i].allFinite() || !std::isfinite(grown(i)); }
   bool meets(std::size_t i, std::size_t j) const {
     const double g = grow_.empty() ? 0.0 : grow_[i] + grow_[j];
-    return !((centres_[i] - centres_[j]).norm() - radius_[i] - radius_[j] >= g);
+    return !(sphere_gap(centres_[i], centres_[j], radius_[i], radius_[j]) >= g);
   }
   std::span<const core::Vec3> centres_;
   std::span<const double> radius_, grow_;

@@ -303,6 +303,24 @@ TEST(Sanity, BouncingOffAWallIsNotDrift) {
   EXPECT_NE(lines[0].note.find("2 stretch"), std::string::npos) << lines[0].note;  // before and after the wall
 }
 
+// A body that could reach a resting one within a sample's interval leaves
+// that interval unchecked, though their bounding spheres are apart at both
+// samples: a cube crossing beside the resting one at 40 m/s, 0.5 m from it
+// (spheres 0.15 m apart, faces 0.3 m, its reach in 0.01 s 0.4 m). The rule
+// finds such partners by growing each sphere by its own reach; without the
+// growth the resting cube's rest would be one stretch, not two.
+TEST(Sanity, ABodyThatCouldReachARestingOneLeavesItUnchecked) {
+  auto scene = slab_scene();
+  scene.bodies.push_back(box("crossing", {0.2, 0.2, 0.2}, 1, {0.5, -2, 0.1}));
+  const auto run = make_run(scene, 0.1, [](std::size_t b, double t) {
+    if (b == 1) return State{{0, 0, 0.1 - 5e-5}, {0, 0, 0}};
+    return State{{0.5, 40 * (t - 0.05), 0.1 - 5e-5}, {0, 40, 0}};
+  });
+  const auto lines = compare::lateral_drift_checks(scene, run);
+  for (const auto& l : lines) EXPECT_TRUE(passes(l)) << l.what << ": " << l.note;
+  EXPECT_NE(lines[0].note.find("4 stretch"), std::string::npos) << lines[0].note;  // each cube: before and after
+}
+
 // Rule 5. The cube slower than the resting speed (0.064 m/s here) and
 // speeding up steadily at 1e-3 m/s² for 2 s, as the top of a tilted column
 // did: the rise over a second (1e-3 m/s) is ten times the bound.
