@@ -1108,6 +1108,52 @@ TYPED_TEST_P(CollisionStepCases, TheDirectSolvesGroupsOnTwoThreadsGiveOneThreads
               static_cast<unsigned long long>(one.counters.solves));
 }
 
+// A group of bodies integrated on its own (core/collision/subsystem.hpp: an
+// island stepped alone, its search's trials of the whole island) is
+// integrated in blocks on the run's threads once it is large enough, and the
+// blocks give the whole group's state bit for bit: the crowded box's 343
+// thrown bodies (and its walls) over three collision steps in two calls, the
+// second reusing the first's blocks, with RK4 and Euler, on one thread and
+// on two (with the stages' grains and with fine ones).
+TYPED_TEST_P(CollisionStepCases, AGroupIntegratedInBlocksOnTwoThreadsGivesOneThreadsState) {
+  using B = TypeParam;
+  core::Scene s = crowded_box(this->drop());
+  for (const auto method : {core::SolverMethod::rk4, core::SolverMethod::euler}) {
+    SCOPED_TRACE(method == core::SolverMethod::rk4 ? "rk4" : "euler");
+    s.solver.method = method;
+    const auto model = B::build(s);
+    std::vector<double> y(B::state_size(model));
+    B::initial_state(model, y);
+    using C = std::decay_t<decltype(*model.collisions)>;
+    using Bodies = typename C::BodiesType;
+    const C& c = *model.collisions;
+    const double h = c.setup.settings.step;
+    const std::span<const double> start = std::span<const double>(y).subspan(model.offset);
+    const auto integrate = [&](int threads, bool fine) {
+      const ScopedThreads scoped(threads, fine);
+      core::Subsystem<Bodies> a(model.bodies, c.setup.all_bodies, start.size() / c.setup.all_bodies.size(),
+                                c.setup.solver);
+      EXPECT_EQ(core::BodyBlocks<Bodies>::wanted(method, a.group.size()), threads > 1);
+      std::vector<double> ys = a.gather(start);
+      core::Profile profile;
+      a.integrate(0, 2 * h, ys, profile);
+      a.integrate(2 * h, 3 * h, ys, profile);
+      return std::pair(ys, a.solver().stats());  // the group's solver counts the blocks' steps
+    };
+    const auto [one, one_stats] = integrate(1, false);
+    ASSERT_NE(one, std::vector<double>(start.begin(), start.end()));  // the bodies moved
+    ASSERT_GE(one_stats.steps_accepted, 3u);
+    for (const bool fine : {false, true}) {
+      SCOPED_TRACE(fine ? "fine grains" : "the stages' grains");
+      const auto [two, two_stats] = integrate(2, fine);
+      ASSERT_EQ(one.size(), two.size());
+      for (std::size_t k = 0; k < one.size(); ++k) ASSERT_EQ(one[k], two[k]) << "state entry " << k;
+      EXPECT_EQ(one_stats.steps_accepted, two_stats.steps_accepted);
+      EXPECT_EQ(one_stats.derivative_evaluations, two_stats.derivative_evaluations);
+    }
+  }
+}
+
 // What the search buys beyond depth: an elastic bounce (restitution 1) keeps
 // its energy when its impact is found within the tolerance, and gains
 // energy without a search, because the push-out lifts the ball out of the
@@ -1225,6 +1271,7 @@ REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithin
                             ThePushOutLiftsAPairMetAtOneOrTwoPointsWithoutTurningItBackIn,
                             TheDirectSolvesGroupsOnTwoThreadsGiveOneThreadsAnswer, ASlidingPairIsKeptAgainOnceAtRest,
                             ABodyCarriedPastItsReachEndsTheStepWithinTheTolerance,
-                            AContactIsWarmStartedFromTheStepBeforeOnly);
+                            AContactIsWarmStartedFromTheStepBeforeOnly,
+                            AGroupIntegratedInBlocksOnTwoThreadsGivesOneThreadsState);
 
 }  // namespace gacompare::testing

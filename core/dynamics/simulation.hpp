@@ -17,7 +17,6 @@
 #include <memory>
 #include <optional>
 #include <sstream>
-#include <thread>
 
 namespace gacompare::core {
 
@@ -51,11 +50,9 @@ struct Simulation {
     std::optional<typename Contacts::State> collisions;
     // The bodies in one block per thread, each integrated through the
     // world's step on one thread (integrate_in_blocks); built on first use.
-    std::vector<std::vector<int>> block_bodies;
-    std::vector<std::unique_ptr<Subsystem<Bodies>>> blocks;
-    std::vector<std::vector<double>> block_states;  // kept: a fresh one each step cost page faults
+    std::unique_ptr<BodyBlocks<Bodies>> blocks;
   };
-  static Data data(const Model& m) { return Data{m.collisions_start, {}, {}, {}}; }
+  static Data data(const Model& m) { return Data{m.collisions_start, {}}; }
 
   static Model build(const Scene& scene, std::shared_ptr<const core::Model> compiled) {
     Model m{Particles::build(scene), {}, std::move(compiled), 0, std::nullopt, std::nullopt, 0, effect_targets(scene)};
@@ -153,61 +150,18 @@ struct Simulation {
     }
   }
   // Whether the world's step is integrated in blocks of bodies, one block per
-  // thread, each through every stage of the step on its thread. Its bodies
-  // move alone within the step (forces act on each body alone; contacts
-  // come after it, core/collision/collision_step.hpp), and a fixed-step
-  // method's stages are sums taken number by number, so a block's numbers
-  // are the whole world's, bit for bit. Splitting each force evaluation
-  // across the threads instead (RigidBodies::derivative's loop) made two
-  // threads slower than one on the 10,000-body box: the stages' sums ran on
-  // one thread and read every other body's derivative from the other core's
-  // cache, four times a step. An adaptive method's step depends on every
-  // body's error, a particle on other particles (pairs, springs,
-  // constraints): those, a Lie-group method and sleeping bodies (whose mask
-  // is the world's) take the world's step. Below kBlockBodies bodies a
-  // block's work is about what waking a thread costs.
-  static constexpr std::size_t kBlockBodies = 64;
+  // thread (core/collision/subsystem.hpp BodyBlocks says why that is bit for
+  // bit the whole world's step): rigid bodies alone, since a particle's
+  // forces may read other particles (pairs, springs, constraints).
   static bool in_blocks(const Model& m, const OdeSolver& solver) {
-    const auto method = solver.method();
-    return threads() > 1 && m.offset == 0 && (method == SolverMethod::rk4 || method == SolverMethod::euler) &&
-           m.bodies.bodies.size() >= grain_of(kBlockBodies) * static_cast<std::size_t>(threads());
+    return m.offset == 0 && BodyBlocks<Bodies>::wanted(solver.method(), m.bodies.bodies.size());
   }
   static void integrate_in_blocks(const Model& m, Data& data, OdeSolver& solver, double& t, double t1,
                                   std::vector<double>& y, Profile& profile) {
-    // The wall time is the integrate stage's; the forces of the block that
-    // runs on the run's own thread are timed as forces, as on one thread.
-    ScopedStage timed(profile, Stage::integrate);
-    const std::size_t n = m.bodies.bodies.size(), count = static_cast<std::size_t>(threads());
-    if (data.blocks.size() != count) {
-      const std::size_t stride = Bodies::state_size(m.bodies) / n;
-      data.blocks.clear();
-      data.block_bodies.assign(count, {});
-      data.block_states.assign(count, {});
-      for (std::size_t k = 0; k < count; ++k)
-        for (std::size_t b = k * n / count; b < (k + 1) * n / count; ++b) data.block_bodies[k].push_back(static_cast<int>(b));
-      for (std::size_t k = 0; k < count; ++k) {
-        data.blocks.push_back(std::make_unique<Subsystem<Bodies>>(m.bodies, data.block_bodies[k], stride, solver.spec()));
-        data.blocks.back()->solver().set_step_budget(0x1p53);  // the world's solver keeps the budget
-      }
-    }
-    solver.check_fixed_budget(t, t1, y);
-    const SolverStats before = data.blocks[0]->solver().stats();
-    const auto caller = std::this_thread::get_id();
-    std::vector<Profile> elsewhere(count);  // a worker's stage times: its wall time is the caller's wait
-    for_each_index(
-        count,
-        [&](std::size_t k) {
-          Subsystem<Bodies>& block = *data.blocks[k];
-          std::vector<double>& ys = data.block_states[k];  // the block's bodies are consecutive
-          const auto first = y.begin() + static_cast<long>(block.group.front() * block.stride);
-          ys.assign(first, first + static_cast<long>(block.group.size() * block.stride));
-          block.integrate(t, t1, ys, std::this_thread::get_id() == caller ? profile : elsewhere[k]);
-          std::copy(ys.begin(), ys.end(), first);
-        },
-        1);
-    const SolverStats& after = data.blocks[0]->solver().stats();
-    solver.add_steps(before, after);
-    m.force_evaluations += after.derivative_evaluations - before.derivative_evaluations;
+    if (!data.blocks) data.blocks = std::make_unique<BodyBlocks<Bodies>>();
+    const std::uint64_t before = solver.stats().derivative_evaluations;
+    data.blocks->integrate(m.bodies, Bodies::state_size(m.bodies) / m.bodies.bodies.size(), solver, t, t1, y, profile);
+    m.force_evaluations += solver.stats().derivative_evaluations - before;
     t = t1;
   }
   // A collision step names the stage a non-finite state came from (the
