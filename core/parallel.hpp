@@ -58,6 +58,10 @@ inline constexpr std::size_t kGrainBody = 2048;
 // island's searched sub-steps keep kGrainPair: at 32 the searched
 // 1,000-body box went from 17.3 s to 18.0 s.
 inline constexpr std::size_t kGrainPushOutPair = 32;
+// A time-of-impact search's depth tests at a trial time (Collider::depth_at):
+// a pile's searches test tens of pairs at a time, up to a hundred and more,
+// a few microseconds each with their bodies placed.
+inline constexpr std::size_t kGrainDepthPair = 32;
 
 // For the determinism check (gacompare-state-hash --fine-grains): every
 // loop is cut into chunks of at most 4 items, so that a scene small enough

@@ -1154,6 +1154,54 @@ TYPED_TEST_P(CollisionStepCases, AGroupIntegratedInBlocksOnTwoThreadsGivesOneThr
   }
 }
 
+// A search's depth tests at a trial time (Collider::depth_of: a pile's
+// resting contacts that sank below the tolerance in a sub-step are searched
+// together, tens of pairs at a time) run on the run's threads once they are
+// many, and give one thread's answer: the crowded box's neighbouring pairs
+// (walls included), in prefixes whose deepest pairs differ, on two threads
+// with the stages' grains and with fine ones, each body placed once.
+TYPED_TEST_P(CollisionStepCases, ASearchsDepthTestsOnTwoThreadsGiveOneThreadsAnswer) {
+  using B = TypeParam;
+  const core::Scene s = crowded_box(this->drop());
+  const auto model = B::build(s);
+  std::vector<double> y(B::state_size(model));
+  B::initial_state(model, y);
+  using C = std::decay_t<decltype(*model.collisions)>;
+  const C& c = *model.collisions;
+  const WholeBoxIsland<C> island(model, c);
+  const std::vector<double> ys = island.a.gather(std::span<const double>(y).subspan(model.offset));
+  std::vector<std::pair<int, int>> near;  // grid neighbours, and the movers beside a wall
+  for (const auto& [i, j] : island.among) {
+    const core::Body &a = s.bodies[static_cast<std::size_t>(i)], &b = s.bodies[static_cast<std::size_t>(j)];
+    int axis = 0;  // a wall's (the walls come first: a wall is always i)
+    a.position.cwiseAbs().maxCoeff(&axis);
+    if (a.is_static ? std::abs(a.position[axis] - b.position[axis]) < 0.45 : (a.position - b.position).norm() < 0.45)
+      near.push_back({i, j});
+  }
+  ASSERT_GT(near.size(), 1000u);
+  for (const std::size_t count : {std::size_t{40}, std::size_t{100}, std::size_t{333}, near.size()}) {
+    SCOPED_TRACE(count);
+    const std::vector<std::pair<int, int>> pairs(near.begin(), near.begin() + static_cast<long>(count));
+    const auto deepest = [&](int threads, bool fine) {
+      const ScopedThreads scoped(threads, fine);
+      typename C::State state;
+      core::Profile profile;
+      const double g = c.depth_of(state, island.a.model, ys, island.a.group, pairs, profile);
+      return std::pair(g, state.counters.narrowphase_shapes);
+    };
+    const auto one = deepest(1, false);
+    ASSERT_TRUE(std::isfinite(one.first));
+    std::vector<int> bodies;
+    for (const auto& [i, j] : pairs) bodies.push_back(i), bodies.push_back(j);
+    std::ranges::sort(bodies);
+    EXPECT_EQ(one.second, static_cast<std::uint64_t>(std::unique(bodies.begin(), bodies.end()) - bodies.begin()));
+    for (const bool fine : {false, true}) {
+      SCOPED_TRACE(fine ? "fine grains" : "the stages' grains");
+      EXPECT_EQ(deepest(2, fine), one);
+    }
+  }
+}
+
 // What the search buys beyond depth: an elastic bounce (restitution 1) keeps
 // its energy when its impact is found within the tolerance, and gains
 // energy without a search, because the push-out lifts the ball out of the
@@ -1272,6 +1320,7 @@ REGISTER_TYPED_TEST_SUITE_P(CollisionStepCases, CrowdedBoxFindsEveryImpactWithin
                             TheDirectSolvesGroupsOnTwoThreadsGiveOneThreadsAnswer, ASlidingPairIsKeptAgainOnceAtRest,
                             ABodyCarriedPastItsReachEndsTheStepWithinTheTolerance,
                             AContactIsWarmStartedFromTheStepBeforeOnly,
-                            AGroupIntegratedInBlocksOnTwoThreadsGivesOneThreadsState);
+                            AGroupIntegratedInBlocksOnTwoThreadsGivesOneThreadsState,
+                            ASearchsDepthTestsOnTwoThreadsGiveOneThreadsAnswer);
 
 }  // namespace gacompare::testing

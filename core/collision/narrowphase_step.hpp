@@ -326,16 +326,41 @@ auto Collider<Bodies, NarrowBody, Spheres>::depth_at(State& state, BodyIndices g
   ScopedStage timed(profile, Stage::narrowphase);
   double g = -INFINITY;
   ++state.detection;
-  for (const auto& pair : pairs) {  // few pairs, each body in one or two: their poses only
-    const int i = pair.first, j = pair.second;
-    g = std::max(g, on_pair(
-                        state, group[i], group[j], [&] { return pose_of(i); }, [&] { return pose_of(j); },
-                        [](const NarrowBody& va, const NarrowBody& vb) {
-                          return (collision::round_pair(va, vb) ? collision::round_narrowphase(va, vb)
-                                                                : collision::separating_axis(va, vb))
-                              .depth;
-                        }));
+  const auto depth = [](const NarrowBody& va, const NarrowBody& vb) {
+    return (collision::round_pair(va, vb) ? collision::round_narrowphase(va, vb) : collision::separating_axis(va, vb))
+        .depth;
+  };
+  if (!setup.settings.reuse || !runs_parallel(pairs.size(), kGrainDepthPair)) {
+    for (const auto& pair : pairs) {  // their bodies' poses only, each body placed once
+      const int i = pair.first, j = pair.second;
+      g = std::max(g, on_pair(state, group[i], group[j], [&] { return pose_of(i); }, [&] { return pose_of(j); }, depth));
+    }
+    return g;
   }
+  // Many pairs (a pile's resting contacts that sank below the tolerance in
+  // a sub-step, searched together): on the run's threads, each body placed
+  // once by its own item, then each pair tested in its own slot. The bodies
+  // and the count placed are those of the loop above (the first pair that
+  // names a body places it); the deepest is the same in any order.
+  std::vector<int> place;  // the group's bodies to place, in the order the pairs name them
+  if (state.shapes.size() != setup.meshes.size())
+    state.shapes.resize(setup.meshes.size()), state.placed_in.assign(setup.meshes.size(), 0);
+  for (const auto& [i, j] : pairs)
+    for (const int k : {i, j})
+      if (std::uint64_t& at = state.placed_in[static_cast<std::size_t>(group[k])]; at != state.detection)
+        at = state.detection, place.push_back(k);
+  state.counters.narrowphase_shapes += place.size();
+  for_each_index(place.size(), [&](std::size_t u) {
+    const int k = place[u];
+    state.shapes[static_cast<std::size_t>(group[k])].place({setup.meshes[group[k]].get(), pose_of(k)});
+  }, kGrainDepthPair);
+  std::vector<double> each(pairs.size());
+  for_each_index(pairs.size(), [&](std::size_t q) {
+    const auto [i, j] = pairs[q];
+    each[q] = in_pair_frame(state.shapes[static_cast<std::size_t>(group[i])], state.shapes[static_cast<std::size_t>(group[j])],
+                            depth);
+  }, kGrainDepthPair);
+  for (const double d : each) g = std::max(g, d);
   return g;
 }
 
