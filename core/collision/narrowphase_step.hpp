@@ -22,6 +22,13 @@ namespace gacompare::core {
 // tables to look up it had gained too little to tell from the noise.
 inline constexpr std::size_t kPrefetchAhead = 8;
 
+// The placed shapes' table and the detection each was placed in, one entry
+// per body of the world, sized on first use (narrow, depth_at, shape).
+template <class State>
+void size_shape_tables(State& state, std::size_t bodies) {
+  if (state.shapes.size() != bodies) state.shapes.resize(bodies), state.placed_in.assign(bodies, 0);
+}
+
 template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
 requires collision::NarrowphaseBody<NarrowBody>
 auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices group,
@@ -64,8 +71,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::narrow(State& state, BodyIndices gro
   using Slot = NarrowSlot;
   std::vector<std::pair<int, int>>& tests = state.tests;
   tests.clear();
-  if (reuse && state.shapes.size() != setup.meshes.size())
-    state.shapes.resize(setup.meshes.size()), state.placed_in.assign(setup.meshes.size(), 0);
+  if (reuse) size_shape_tables(state, setup.meshes.size());
   for (const auto& pair : pairs) {
     int i = pair.first, j = pair.second;
     if (setup.is_static[group[i]] && setup.is_static[group[j]]) continue;
@@ -343,8 +349,7 @@ auto Collider<Bodies, NarrowBody, Spheres>::depth_at(State& state, BodyIndices g
   // and the count placed are those of the loop above (the first pair that
   // names a body places it); the deepest is the same in any order.
   std::vector<int> place;  // the group's bodies to place, in the order the pairs name them
-  if (state.shapes.size() != setup.meshes.size())
-    state.shapes.resize(setup.meshes.size()), state.placed_in.assign(setup.meshes.size(), 0);
+  size_shape_tables(state, setup.meshes.size());
   for (const auto& [i, j] : pairs)
     for (const int k : {i, j})
       if (std::uint64_t& at = state.placed_in[static_cast<std::size_t>(group[k])]; at != state.detection)
@@ -368,8 +373,7 @@ template <RigidBodies Bodies, class NarrowBody, SphereTreeOps Spheres>
 requires collision::NarrowphaseBody<NarrowBody>
 template <class PoseOf>
 auto Collider<Bodies, NarrowBody, Spheres>::shape(State& state, int b, PoseOf&& pose_of) const -> const Shape& {
-  if (state.shapes.size() != setup.meshes.size())
-    state.shapes.resize(setup.meshes.size()), state.placed_in.assign(setup.meshes.size(), 0);
+  size_shape_tables(state, setup.meshes.size());
   if (state.placed_in[b] != state.detection) {
     state.shapes[b].place({setup.meshes[b].get(), pose_of()});
     state.placed_in[b] = state.detection;
