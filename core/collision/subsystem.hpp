@@ -25,10 +25,11 @@ class BodyBlocks;
 // (set_group_step_of, core/dynamics/ode.hpp): every body's step reads only
 // its own state and forces (core/dynamics/lie_bodies.hpp), so an island and
 // a time-of-impact trial move on the group as they move in the world.
-// The solver is built on the first integration: a push-out only reads and
-// moves the island's state, and the solver's work vectors (ten of the
-// island's state size, zeroed) cost a pile of thousands of bodies megabytes
-// at every response.
+// The solver is built on the first integration, and its work vectors (ten
+// of the island's state size, zeroed) on its first advance: a push-out only
+// reads and moves the island's state, and an island integrated in blocks
+// steps through the blocks' solvers, its own keeping the budget and the
+// count; those vectors cost a pile of thousands of bodies megabytes.
 template <class Bodies>
 struct Subsystem {
   using Model = typename Bodies::Model;

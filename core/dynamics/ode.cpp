@@ -15,8 +15,7 @@ bool is_adaptive(SolverMethod m) {
 }
 
 OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> velocity_of)
-    : spec_(spec), h_(spec.dt), velocity_of_(std::move(velocity_of)),
-      k1_(n), k2_(n), k3_(n), k4_(n), k5_(n), k6_(n), tmp_(n), out_(n), half_(n), err_(n) {
+    : spec_(spec), h_(spec.dt), n_(n), velocity_of_(std::move(velocity_of)) {
   switch (spec.method) {
     case SolverMethod::euler:
     case SolverMethod::rk4:
@@ -51,6 +50,11 @@ OdeSolver::OdeSolver(const SolverSpec& spec, std::size_t n, std::vector<int> vel
                           "' needs a state of positions and velocities, which this backend's state is not");
       break;
   }
+}
+
+void OdeSolver::size_work() {
+  if (k1_.size() == n_) return;
+  for (auto* v : {&k1_, &k2_, &k3_, &k4_, &k5_, &k6_, &tmp_, &out_, &half_, &err_}) v->assign(n_, 0.0);
 }
 
 double OdeSolver::error_ratio(const std::vector<double>& y, const std::vector<double>& ynew,

@@ -173,10 +173,16 @@ class OdeSolver {
   GroupStepFn group_step_;
   double budget_ = 1e8;
   double h_;  // adaptive: the step to try next
+  std::size_t n_;  // the state's size
   SolverStats stats_;
   std::vector<int> velocity_of_;
   bool have_acc_ = false;  // velocity_verlet: k5_ holds a(x, v) of the current state
+  // The steps' work vectors, sized on the first advance (size_work): a
+  // solver that only keeps the budget and counts the steps of others (an
+  // island integrated in blocks, BodyBlocks) never allocates them, where a
+  // pile's island would zero ten of its state's size at every step alone.
   std::vector<double> k1_, k2_, k3_, k4_, k5_, k6_, tmp_, out_, half_, err_;
+  void size_work();
 
   // The embedded pairs: their tableau, b − bhat, the stages of the last step
   // (stage i at [i·n, (i+1)·n)), its start (ys_ at t0_, step hlast_) and the
@@ -363,6 +369,7 @@ void OdeSolver::advance(F&& f, double& t, double t_end, std::vector<double>& y, 
   const double span = t_end - t;
   if (!(span > 0)) return;
   const std::size_t n = y.size();
+  size_work();
   // One timed scope per advance (per output interval), not per step: two clock
   // reads a step are a measurable share of a cheap derivative's run, an
   // overhead no peer pays.
