@@ -643,28 +643,17 @@ bool active_set(const Blcp& p, const Eigen::VectorXd& c, const Eigen::VectorXd& 
 
 }  // namespace
 
-BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings& settings) {
+// A feasible start: the warm start held within its bounds; a row on a bound
+// starts there, every other row free. A row within 1e-12 of the largest
+// impulse of its bound counts as on it: a row that ended the last step
+// free at a rounding residue (a face's redundant corner, ~1e-18) started
+// free, the first free solve drove it negative, and blocking it there took
+// a factorisation of its own, at nearly every step of a resting pyramid
+// (the ten-layer wall: 1,733 pivots in its first 2 s; 463 in all 10 s so).
+// Starting it on the bound costs at most a release, which the
+// conditions below make where it is needed.
+std::vector<State> start(const Blcp& p, Eigen::VectorXd& lambda) {
   const Eigen::Index n = p.b.size();
-  BlcpResult result;
-  if (n == 0) {
-    result.solved = true;
-    return result;
-  }
-  const double tol = tolerance_of(p, settings);
-  Eigen::VectorXd diagonal(n);
-  double dmax = 0;
-  for (Eigen::Index i = 0; i < n; ++i) diagonal[i] = p.A.coeff(i, i), dmax = std::max(dmax, diagonal[i]);
-  const Eigen::VectorXd delta =
-      1e-10 * dmax * (p.weight.size() == n ? p.weight : Eigen::VectorXd(Eigen::VectorXd::Ones(n)));
-  // A feasible start: the warm start held within its bounds; a row on a bound
-  // starts there, every other row free. A row within 1e-12 of the largest
-  // impulse of its bound counts as on it: a row that ended the last step
-  // free at a rounding residue (a face's redundant corner, ~1e-18) started
-  // free, the first free solve drove it negative, and blocking it there took
-  // a factorisation of its own, at nearly every step of a resting pyramid
-  // (the ten-layer wall: 1,733 pivots in its first 2 s; 463 in all 10 s so).
-  // Starting it on the bound costs at most a release, which the
-  // conditions below make where it is needed.
   std::vector<State> state(static_cast<std::size_t>(n));
   double largest = 0;
   for (Eigen::Index i = 0; i < n; ++i) largest = std::max(largest, std::abs(lambda[i]));
@@ -679,6 +668,53 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
         : lambda[i] == p.hi[i]   ? State::upper
                                  : State::free;
   }
+  return state;
+}
+
+// One row, a > 0: minimise ½ a λ² + b λ over lo ≤ λ ≤ hi, whose answer is
+// −b/a held within the bounds; no regularisation is needed (a row alone
+// is never redundant), so the answer is the problem's own, where the
+// general method finds the regularised one and refines it to 1e-3 of the
+// tolerance. The active-set rules are the general method's: a row that
+// starts on a bound stays there while w = a λ + b points away from it to
+// within the tolerance, and the counts are the changes and the (1×1)
+// factorisations the general method would make. More than half the direct
+// solves of a pile of boxes are of a row alone (a body touching one other
+// at one point), and the general method's sparse storage and work vectors
+// were most of their time.
+BlcpResult one_row(const Blcp& p, Eigen::VectorXd& lambda, State s, double tol, const Eigen::VectorXd& diagonal) {
+  const double a = diagonal[0], b = p.b[0], lo = p.lo[0], hi = p.hi[0];
+  BlcpResult result;
+  result.solved = true;
+  const double w = a * lambda[0] + b;
+  const bool stays = s == State::fixed || (s == State::lower && !(w < -tol)) || (s == State::upper && !(w > tol));
+  if (!stays) {
+    const double x = -b / a;
+    const bool now_free = x > lo && x < hi;
+    lambda[0] = now_free ? x : x <= lo ? lo : hi;
+    result.factorisations = 1;  // a free solve: from a free start, or after the release
+    result.pivots = (s == State::free ? 0 : 1) + (now_free ? 0 : 1);  // the release, and the block at a bound
+  }
+  result.residual = residual_of(p, lambda, diagonal);
+  return result;
+}
+
+BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings& settings) {
+  const Eigen::Index n = p.b.size();
+  BlcpResult result;
+  if (n == 0) {
+    result.solved = true;
+    return result;
+  }
+  const double tol = tolerance_of(p, settings);
+  Eigen::VectorXd diagonal(n);
+  double dmax = 0;
+  for (Eigen::Index i = 0; i < n; ++i) diagonal[i] = p.A.coeff(i, i), dmax = std::max(dmax, diagonal[i]);
+  const Eigen::VectorXd delta =
+      1e-10 * dmax * (p.weight.size() == n ? p.weight : Eigen::VectorXd(Eigen::VectorXd::Ones(n)));
+  std::vector<State> state = start(p, lambda);
+  if (n == 1 && p.A.nonZeros() == 1 && diagonal[0] > 0 && std::isfinite(diagonal[0]) && std::isfinite(p.b[0]))
+    return one_row(p, lambda, state[0], tol, diagonal);
   std::vector<Eigen::Index> rows;
   UpdatedSystem system(p, delta, settings);  // the free rows' last system
   Eigen::VectorXd rhs;               // and the right-hand side it solved

@@ -244,6 +244,81 @@ TEST(Blcp, AWarmStartWithinRoundingOfABoundStartsOnIt) {
   EXPECT_EQ(lambda[1], 0.0);
 }
 
+// A row alone is solved in closed form (−b/a held within its bounds, lcp.cpp's
+// one_row). Seeded random rows of every kind (normal, box, bilateral, fixed)
+// from warm starts at zero, inside, on a bound and just off one: the answer
+// meets the conditions to rounding (1e-13 of the scale, where the general
+// method's refined answer is held to its tolerance), equals the brute-force
+// answer where the start does not decide it, and agrees with the general
+// method on the same row beside an uncoupled second one (A = diag(a, 1)),
+// which the closed form does not take: the same λ to 1e-12 of its size.
+// A row that starts on a bound stays there while w points away from it within
+// the tolerance, as in the general method.
+TEST(Blcp, OneRowInClosedFormMatchesTheGeneralMethod) {
+  std::mt19937_64 rng(20261207);
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 400; ++trial) {
+    const double a = std::exp(2 * g(rng)), b = u(rng);
+    const int kind = trial % 4;  // normal, box, bilateral, fixed
+    Blcp one;
+    one.A = sparse(Eigen::MatrixXd::Constant(1, 1, a));
+    one.b = Eigen::VectorXd::Constant(1, b);
+    one.lo = Eigen::VectorXd::Constant(1, kind == 0 ? 0.0 : kind == 1 ? -0.3 : kind == 2 ? -kInf : 0.2);
+    one.hi = Eigen::VectorXd::Constant(1, kind == 0 ? kInf : kind == 1 ? 0.3 : kind == 2 ? kInf : 0.2);
+    const int start = (trial / 4) % 4;  // zero, inside, on the lower bound, just above it
+    const double lo = one.lo[0];
+    const double warm = start == 0 ? 0.0 : start == 1 ? 0.1 : start == 2 ? (std::isfinite(lo) ? lo : 0.0)
+                                                                           : (std::isfinite(lo) ? lo + 1e-6 : 0.0);
+    Eigen::VectorXd lambda = Eigen::VectorXd::Constant(1, warm);
+    const BlcpResult r = solve_blcp(one, lambda, {});
+    ASSERT_TRUE(r.solved) << "trial " << trial;
+    const double scale = 1 + a;
+    EXPECT_LE(blcp_residual(one, lambda), 1e-13 * scale) << "trial " << trial;
+    Eigen::VectorXd exact;
+    ASSERT_TRUE(brute_force(one, exact, 1e-13 * scale)) << "trial " << trial;
+    EXPECT_NEAR(lambda[0], exact[0], 1e-12 * (1 + std::abs(exact[0]))) << "trial " << trial;
+
+    Blcp two;
+    Eigen::MatrixXd a2 = Eigen::MatrixXd::Identity(2, 2);
+    a2(0, 0) = a;
+    two.A = sparse(a2);
+    two.b = Eigen::Vector2d(b, -1);
+    two.lo = Eigen::Vector2d(one.lo[0], 0);
+    two.hi = Eigen::Vector2d(one.hi[0], kInf);
+    Eigen::VectorXd both = Eigen::Vector2d(warm, 0);
+    ASSERT_TRUE(solve_blcp(two, both, {}).solved) << "trial " << trial;
+    EXPECT_NEAR(lambda[0], both[0], 1e-12 * (1 + std::abs(both[0]))) << "trial " << trial;
+  }
+  // On its bound, w pointing inwards by less than the tolerance: it stays,
+  // with no factorisation; by more, it is released and solved.
+  Blcp p;
+  p.A = sparse(Eigen::MatrixXd::Constant(1, 1, 2.0));
+  p.lo = Eigen::VectorXd::Zero(1);
+  p.hi = Eigen::VectorXd::Constant(1, kInf);
+  BlcpSettings how;
+  how.velocity_tolerance = 1e-6;
+  p.b = Eigen::VectorXd::Constant(1, -0.5e-6);
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(1);
+  BlcpResult r = solve_blcp(p, lambda, how);
+  EXPECT_EQ(lambda[0], 0.0);
+  EXPECT_EQ(r.factorisations, 0);
+  EXPECT_EQ(r.pivots, 0);
+  p.b[0] = -4.0;
+  lambda[0] = 0;
+  r = solve_blcp(p, lambda, how);
+  EXPECT_EQ(lambda[0], 2.0);
+  EXPECT_EQ(r.factorisations, 1);
+  EXPECT_EQ(r.pivots, 1);  // the release
+  // Started free, its answer past the upper bound: blocked there.
+  p.hi[0] = 1.0;
+  lambda[0] = 0.5;
+  r = solve_blcp(p, lambda, how);
+  EXPECT_EQ(lambda[0], 1.0);
+  EXPECT_EQ(r.factorisations, 1);
+  EXPECT_EQ(r.pivots, 1);  // the block
+}
+
 // The contact solver weights its friction rows 1e4 (contact_solver.hpp), so
 // their regularisation δ_i is 1e-6 of the largest diagonal, and an answer of
 // the regularised problem is off by about δ_i λ_i in their velocities. Where
