@@ -710,11 +710,11 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
   Eigen::VectorXd diagonal(n);
   double dmax = 0;
   for (Eigen::Index i = 0; i < n; ++i) diagonal[i] = p.A.coeff(i, i), dmax = std::max(dmax, diagonal[i]);
+  std::vector<State> state = start(p, lambda);
+  if (n == 1 && diagonal[0] > 0 && std::isfinite(diagonal[0]) && std::isfinite(p.b[0]))
+    return one_row(p, lambda, state[0], tol, diagonal);
   const Eigen::VectorXd delta =
       1e-10 * dmax * (p.weight.size() == n ? p.weight : Eigen::VectorXd(Eigen::VectorXd::Ones(n)));
-  std::vector<State> state = start(p, lambda);
-  if (n == 1 && p.A.nonZeros() == 1 && diagonal[0] > 0 && std::isfinite(diagonal[0]) && std::isfinite(p.b[0]))
-    return one_row(p, lambda, state[0], tol, diagonal);
   std::vector<Eigen::Index> rows;
   UpdatedSystem system(p, delta, settings);  // the free rows' last system
   Eigen::VectorXd rhs;               // and the right-hand side it solved
