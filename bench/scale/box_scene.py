@@ -25,6 +25,7 @@ import sys
 
 PITCH = 0.3
 SHAPES = [{"box": [0.12, 0.12, 0.12]}, {"tetrahedron": 0.2}, {"octahedron": 0.09}]
+TOLERANCE = 1e-4  # the collision scenes' penetration tolerance (m)
 
 
 def unit_quaternion(rng):
@@ -92,7 +93,7 @@ def collision_scene(name, description, duration, every, dt, restitution, bodies)
         "solver": {"method": "rk4", "dt": dt},
         "effects": [
             {"type": "gravity", "g": [0, 0, -9.81]},
-            {"type": "collisions", "restitution": restitution, "penetration_tolerance": 0.0001, "step": 0.001},
+            {"type": "collisions", "restitution": restitution, "penetration_tolerance": TOLERANCE, "step": 0.001},
         ],
         "bodies": bodies,
     }

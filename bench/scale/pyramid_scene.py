@@ -23,6 +23,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import box_scene  # noqa: E402
 
 CUBE, DROP, GAP = 0.2, 0.001, 0.02
+TOLERANCE = box_scene.TOLERANCE
 
 
 def cubes(layers):
