@@ -67,7 +67,8 @@ def pyramids_against_bullet(markdown):
 
 def pyramid_held(markdown, duration):
     """A headline row: whether the long-run pyramid in bench/scale/pyramids.py's
-    table stood, and how far from its rest its farthest cube ended, by backend."""
+    table stood, how far from its rest its farthest cube ended and how fast
+    its fastest cube still moved, by backend."""
     t = next(t for t in tables(markdown) if t[0][0] == "layers")
     head = t[0]
     far, fast = head.index("farthest from rest (m)"), head.index("fastest at the end (m/s)")
