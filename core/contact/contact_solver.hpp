@@ -687,24 +687,13 @@ class ContactSolver {
                    const contact::BlcpSettings& how, GroupCounts& counts) const {
       const auto m = static_cast<Eigen::Index>(group.size());
       for (Eigen::Index i = 0; i < m; ++i) local[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])] = i;
-      // A's columns of the group's lines, copied into compressed storage (no
+      // A's block on the group's lines, copied from its compressed storage (no
       // triplets to sort: most groups are a row or two, and sorting was a
       // good part of their solve). Every row of such a column is a line of
       // the group (lines couple only through a moving body they share), and
-      // `local` numbers them in line order, so each column stays sorted.
+      // `local` numbers them in line order.
       contact::Blcp g;
-      g.A.resize(m, m);
-      int* outer = g.A.outerIndexPtr();
-      outer[0] = 0;
-      for (Eigen::Index u = 0; u < m; ++u) {
-        int c = 0;
-        for (Eigen::SparseMatrix<double>::InnerIterator it(p.A, group[static_cast<std::size_t>(u)]); it; ++it) ++c;
-        outer[u + 1] = outer[u] + c;
-      }
-      g.A.resizeNonZeros(outer[m]);
-      for (Eigen::Index u = 0, nz = 0; u < m; ++u)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(p.A, group[static_cast<std::size_t>(u)]); it; ++it, ++nz)
-          g.A.innerIndexPtr()[nz] = static_cast<int>(local[static_cast<std::size_t>(it.row())]), g.A.valuePtr()[nz] = it.value();
+      g.A = contact::principal_block(p.A, group, local);
       g.b = p.b(group), g.lo = p.lo(group), g.hi = p.hi(group), g.weight = p.weight(group);
       if (p.G.rows() > 0 && m >= how.augmented_from) {  // the group's rows of G (its bodies' columns)
         std::vector<Eigen::Triplet<double>> gt;

@@ -15,16 +15,11 @@
 
 namespace gacompare::core::contact {
 
-namespace {
-
-enum class State : char { free, lower, upper, fixed };  // fixed: lo = hi
-
-// A_FF: A's rows and columns F (free[i] = i's position in F, or −1), column
-// by column straight from A's storage (no triplets to sort): A is
-// compressed with each column's rows in order, and `free` keeps their order,
-// so each column of A_FF comes out sorted.
-Eigen::SparseMatrix<double> free_block(const Eigen::SparseMatrix<double>& a, const std::vector<Eigen::Index>& rows,
-                                       const std::vector<Eigen::Index>& free) {
+// Column by column straight from A's storage (no triplets to sort): A is
+// compressed with each column's rows in order, and `place` keeps their
+// order, so each column of the block comes out sorted.
+Eigen::SparseMatrix<double> principal_block(const Eigen::SparseMatrix<double>& a, const std::vector<Eigen::Index>& rows,
+                                            const std::vector<Eigen::Index>& place) {
   const auto n = static_cast<Eigen::Index>(rows.size());
   Eigen::Index nnz = 0;
   for (const Eigen::Index c : rows) nnz += a.outerIndexPtr()[c + 1] - a.outerIndexPtr()[c];
@@ -34,13 +29,17 @@ Eigen::SparseMatrix<double> free_block(const Eigen::SparseMatrix<double>& a, con
   for (Eigen::Index k = 0; k < n; ++k) {
     out.outerIndexPtr()[k] = static_cast<int>(at);
     for (Eigen::SparseMatrix<double>::InnerIterator it(a, rows[static_cast<std::size_t>(k)]); it; ++it)
-      if (const Eigen::Index j = free[static_cast<std::size_t>(it.row())]; j >= 0)
+      if (const Eigen::Index j = place[static_cast<std::size_t>(it.row())]; j >= 0)
         out.innerIndexPtr()[at] = static_cast<int>(j), out.valuePtr()[at] = it.value(), ++at;
   }
   out.outerIndexPtr()[n] = static_cast<int>(at);
   out.resizeNonZeros(at);
   return out;
 }
+
+namespace {
+
+enum class State : char { free, lower, upper, fixed };  // fixed: lo = hi
 
 // x refined towards A_FF x = r, `solve` the regularised (A_FF + δ)⁻¹ (δ taken
 // away again): converges on r's part in A_FF's range; stops when it no
@@ -86,7 +85,7 @@ class FreeSystem {
   FreeSystem(const Eigen::SparseMatrix<double>& a, const std::vector<Eigen::Index>& rows,
              const std::vector<Eigen::Index>& free, const Eigen::VectorXd& delta, int dense_up_to,
              const Eigen::SparseMatrix<double, Eigen::RowMajor>* g = nullptr)
-      : n_(static_cast<Eigen::Index>(rows.size())), dense_(n_ <= dense_up_to), a_ff_(free_block(a, rows, free)) {
+      : n_(static_cast<Eigen::Index>(rows.size())), dense_(n_ <= dense_up_to), a_ff_(principal_block(a, rows, free)) {
     if (g && !dense_) {
       augment(*g, rows, delta);
       return;
@@ -375,7 +374,7 @@ class UpdatedSystem {
     return w_[static_cast<std::size_t>(at)];
   }
   void update() {
-    a_ff_ = free_block(a_, rows_, place_);
+    a_ff_ = principal_block(a_, rows_, place_);
     const auto k = static_cast<Eigen::Index>(changes_.size());
     Eigen::MatrixXd c(k, k);
     for (Eigen::Index v = 0; v < k; ++v) {

@@ -102,6 +102,12 @@ BlcpResult solve_blcp(const Blcp& p, Eigen::VectorXd& lambda, const BlcpSettings
 // limit. What it leaves out is at most that diagonal, entry by entry.
 Eigen::MatrixXd psd_factor(const Eigen::MatrixXd& a, int most_columns);
 
+// The principal block of A on `rows` (A compressed, each column's rows in
+// order): place[i] is row i's position in the block, or −1 outside it, and
+// increases with i over the rows, so the block's columns come out sorted.
+Eigen::SparseMatrix<double> principal_block(const Eigen::SparseMatrix<double>& a, const std::vector<Eigen::Index>& rows,
+                                            const std::vector<Eigen::Index>& place);
+
 // The worst violation of the BLCP conditions by λ (in w's units, with a bound
 // violation measured as its velocity effect |A_ii| |excess|).
 double blcp_residual(const Blcp& p, const Eigen::VectorXd& lambda);
