@@ -42,7 +42,7 @@ def main():
     args, sizes, scratch = runs.start(ap, [("layers", True), ("cubes", True), ("backend", False),
                                            ("s per simulated s", True), ("contacts per step", True),
                                            ("factorisations per step", True), ("active-set changes", True),
-                                           ("farthest from rest (m)", True), ("fastest at the end (m/s)", True),
+                                           ("farthest from rest (m)", True), ("fastest once landed (m/s)", True),
                                            ("stands", False)])
     backends = args.backends.split(",")
     for layers in sizes:

@@ -71,7 +71,7 @@ def pyramid_held(markdown, duration):
     its fastest cube moved once landed, by backend."""
     t = next(t for t in tables(markdown) if t[0][0] == "layers")
     head = t[0]
-    far, fast = head.index("farthest from rest (m)"), head.index("fastest at the end (m/s)")
+    far, fast = head.index("farthest from rest (m)"), head.index("fastest once landed (m/s)")
     stands = head.index("stands")
     cubes = int(t[1][1])
     value = ", ".join(f"{row[2]} {'stands' if row[stands] == 'yes' else 'FAILS'} ({row[far]} m, {row[fast]} m/s)"
