@@ -308,7 +308,10 @@ void category_tables(std::ostringstream& o, const PairSummaries& ps, int repeats
       << kBootstrapResamples << " resamples, seed " << kBootstrapSeed
       << "; the expanded percentile interval, which widens the plain one for few repeats). The verdict is \"within "
          "noise\" whenever the interval contains 1. Particle scenes run the same formulas in every backend (a "
-         "vector of the algebra is a 3-vector): reported, not counted as evidence.\n\n";
+         "vector of the algebra is a 3-vector): reported, not counted as evidence. A scene whose backends parted "
+         "(chaos amplified their different rounding) is left out of its category's ratios: the two runs did "
+         "different work, and no count of work makes two piles the same work, so its ratio moves with the chaos. "
+         "It has a section of its own below, per unit of work.\n\n";
     if (repeats < static_cast<int>(kMinRepeatsForInterval))
       o << "**Note:** with " << repeats << " repeat" << (repeats == 1 ? "" : "s")
         << " there is no interval and so no verdict: a bootstrap interval from fewer than " << kMinRepeatsForInterval
@@ -321,8 +324,9 @@ void category_tables(std::ostringstream& o, const PairSummaries& ps, int repeats
     << "|---|---|---:|---:|---:|---:|---|\n";
   for (const Category c : kCategories) {
     const Aggregate overall = aggregate(ps.scenes, c, std::nullopt);
-    if (overall.scenes == 0) continue;
-    const std::string name = std::string(to_string(c)) + (is_evidence(c) ? "" : " (not evidence)");
+    if (overall.scenes == 0 && overall.parted == 0) continue;
+    const std::string name = std::string(to_string(c)) + (is_evidence(c) ? "" : " (not evidence)") +
+                             (overall.parted ? " (" + std::to_string(overall.parted) + " parted, left out)" : "");
     auto line = [&](const std::string& stage, const Aggregate& a) {
       o << "| " << name << " | " << stage << " | " << a.scenes << " | " << format_seconds(a.denominator_seconds)
         << " | " << format_seconds(a.numerator_seconds) << " | " << interval_cell(a.ratio) << " | "
@@ -342,9 +346,9 @@ void category_tables(std::ostringstream& o, const PairSummaries& ps, int repeats
       << "The " << den << " and " << num << " positions moved " << fmt("%.2g", s.divergence)
       << " m apart, beyond the scene's " << s.tolerance.source << " (" << fmt("%.2g", s.tolerance.metres)
       << " m): they no longer follow one trajectory (chaos amplifies the backends' different rounding), so they "
-         "did different work. Each stage's "
+         "did different work, and the scene is left out of its category's " << label << " ratios. Here each stage's "
       << num << " time is scaled to the " << den << " run's work (times the " << den << " units over the " << num
-      << " units), and the scene enters its category's " << label << " ratios that way.\n\n"
+      << " units): a count of the work each did, not a comparison of the algebras on the same work.\n\n"
       << "| stage | unit | " << den << " units | " << num << " units | " << den << " per unit | " << num
       << " per unit | " << label << " [95% CI] |\n|---|---|---:|---:|---:|---:|---:|\n";
     // Mean seconds per repeat over the units of work.
@@ -422,20 +426,24 @@ void verdict(std::ostringstream& o, const std::vector<PairSummaries>& pairs) {
       per_pair.push_back(aggregate(ps.scenes, c, std::nullopt));
       scenes = std::max(scenes, per_pair.back().scenes);
     }
-    if (scenes == 0) continue;
     std::vector<std::string> parts;
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       const Aggregate& a = per_pair[i];
-      if (a.scenes == 0) continue;
       std::vector<std::string> parted;
       for (const auto& s : pairs[i].scenes)
         if (s.category == c && s.trajectories == Trajectories::parted) parted.push_back(md_text(s.name));
+      const std::string left_out = parted.empty() ? "" : " (" + and_list(parted) + " parted, left out)";
+      if (a.scenes == 0) {
+        if (!parted.empty()) parts.push_back("no verdict, " + pair_words(pairs[i], c) + ": every scene parted" + left_out);
+        continue;
+      }
       parts.push_back(to_string(a.verdict, pairs[i].pair.numerator) + ", " + pair_words(pairs[i], c) + " " +
                       interval_cell(a.ratio) +
                       (a.scenes < scenes ? " over " + std::to_string(a.scenes) + " scene" + (a.scenes == 1 ? "" : "s")
                                          : "") +
-                      (parted.empty() ? "" : " (" + and_list(parted) + " per unit of work)"));
+                      left_out);
     }
+    if (parts.empty()) continue;
     (is_evidence(c) ? evidence : shared)
         .push_back(std::string(to_string(c)) + " (" + std::to_string(scenes) + " scene" + (scenes == 1 ? "" : "s") +
                    "): " + joined(parts, "; "));
@@ -570,7 +578,7 @@ SummaryParts summary_parts(const std::vector<SceneResult>& results, const std::v
         << (compared_here ? to_string(s.trajectories) : md_text("not compared: " + s.not_compared_why)) << " |\n";
     }
   o << "\nRatios are of the mean time per repeat, whole run; where the trajectories parted, per unit of each "
-       "stage's work (below). Apart: the largest distance between the two backends' particles and bodies' centres "
+       "stage's work (below), and left out of the category's ratios. Apart: the largest distance between the two backends' particles and bodies' centres "
        "of mass, and angle between their bodies' orientations, over all samples. Tolerance d: the scene's "
        "`check.max_divergence`, or on a collision scene its penetration tolerance where that is smaller. Within "
        "it: every position within d and every moving body's orientation within d / r (r the body's radius: a "
@@ -594,8 +602,9 @@ ForestPlot forest(const std::vector<PairSummaries>& pairs) {
       if (overall.scenes == 0) continue;
       const auto row = [&](const std::string& label, const Aggregate& a, std::optional<Stage> stage, bool bold) {
         ForestRow r{label, a.ratio.ratio, a.ratio.lo, a.ratio.hi, {}, bold};
-        for (const auto& s : ps.scenes)
-          if (s.category == c && !compared_seconds(s, stage).numerator.empty()) r.scenes.push_back(scene_ratio(s, stage).ratio);
+        for (const auto& s : ps.scenes)  // the dots of the scenes in the ratio
+          if (s.category == c && s.trajectories != Trajectories::parted && !compared_seconds(s, stage).numerator.empty())
+            r.scenes.push_back(scene_ratio(s, stage).ratio);
         f.rows.push_back(std::move(r));
       };
       const std::string pair = ps.pair.label();

@@ -59,6 +59,7 @@ json interval_json(const Aggregate& a, BackendPair p) {
           {"ci95", json::array({a.ratio.lo, a.ratio.hi})},
           {"verdict", to_string(a.verdict, p.numerator)},
           {"scenes", a.scenes},
+          {"parted_left_out", a.parted},
           {std::string(p.denominator) + "_seconds", a.denominator_seconds},
           {std::string(p.numerator) + "_seconds", a.numerator_seconds}};
 }
@@ -256,6 +257,10 @@ Aggregate aggregate(const std::vector<SceneSummary>& scenes, Category c, std::op
   std::vector<PairedRepeats> data;
   for (const auto& s : scenes) {
     if (s.category != c) continue;
+    if (s.trajectories == Trajectories::parted) {
+      a.parted += !compared_seconds(s, stage).numerator.empty();
+      continue;
+    }
     PairedRepeats p = compared_seconds(s, stage);
     const std::size_t n = p.pairs();
     double sc = 0, st = 0;
@@ -317,10 +322,10 @@ json pair_json(const PairSummaries& ps) {
   json categories = json::object();
   for (const Category c : kCategories) {
     const Aggregate overall = aggregate(ps.scenes, c, std::nullopt);
-    if (overall.scenes == 0) continue;
-    json names = json::array();
+    if (overall.scenes == 0 && overall.parted == 0) continue;
+    json names = json::array(), parted = json::array();
     for (const auto& s : ps.scenes)
-      if (s.category == c) names.push_back(s.name);
+      if (s.category == c) (s.trajectories == Trajectories::parted ? parted : names).push_back(s.name);
     json stages = json::object();
     for (int k = 0; k < core::kStageCount; ++k) {
       const auto stage = static_cast<Stage>(k);
@@ -329,6 +334,7 @@ json pair_json(const PairSummaries& ps) {
     }
     categories[to_string(c)] = {{"evidence", is_evidence(c)},
                                 {"scenes", names},
+                                {"parted", parted},
                                 {"overall", interval_json(overall, p)},
                                 {"stages", stages}};
   }
@@ -361,9 +367,10 @@ nlohmann::ordered_json summary_json(const std::vector<PairSummaries>& pairs, con
              "on rigid-body scenes, pga/traditional, pga/cga, ...), the same way"},
             {"ratio",
              "time-weighted numerator/denominator (cga/traditional): the sum over a category's scenes of the mean "
-             "numerator seconds per repeat over the sum of the mean denominator seconds; where trajectories parted, "
-             "each stage's numerator time is scaled to the denominator run's work (seconds x denominator units / "
-             "numerator units)"},
+             "numerator seconds per repeat over the sum of the mean denominator seconds, over the scenes whose "
+             "trajectories did not part; a parted scene is left out of its category (its backends did different "
+             "work), and its own ratio scales each stage's numerator time to the denominator run's work (seconds x "
+             "denominator units / numerator units)"},
             {"ci95",
              "95% bootstrap interval over paired repeats, resampled within each scene, numerator repeat i kept with "
              "denominator repeat i; expanded percentile interval (Hesterberg 2015): the k-th smallest and largest "

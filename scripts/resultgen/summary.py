@@ -38,13 +38,19 @@ def label(num, den, block, category):
 
 
 def overall(block, category):
+    """The category's whole-run ratio, its verdict and the scenes behind it;
+    the scenes whose backends parted are named as left out of it."""
     c = block["categories"].get(category)
     if not c:
         return None
     o = c["overall"]
+    parted = c.get("parted", [])
+    left_out = f"; {' and '.join(parted)} parted, left out" if parted else ""
+    if not o["scenes"]:
+        return f"no verdict: every scene parted{left_out}"
     lo, hi = o["ci95"] if o["ci95"] and None not in o["ci95"] else (None, None)
     interval = f" [{lo:.2f}, {hi:.2f}]" if lo is not None else ""
-    return f"{o['ratio']:.2f}{interval}, {o['verdict']} ({len(c['scenes'])} scenes)"
+    return f"{o['ratio']:.2f}{interval}, {o['verdict']} ({o['scenes']} scenes{left_out})"
 
 
 def generate(ctx):

@@ -171,6 +171,40 @@ TEST(Summary, AggregateIsPerCategoryAndTimeWeighted) {
   EXPECT_TRUE(j["pairs"].empty());  // cga / traditional alone
 }
 
+TEST(Summary, APartedSceneIsLeftOutOfItsCategory) {
+  // A scene that agreed (ratio 7/3 as measured) and one that parted: the
+  // category's ratio is the agreeing scene's alone, at every stage, and the
+  // parted one is counted and named as left out, keeping its own ratio.
+  std::vector<SceneSummary> scenes = {two_stage_scene(Trajectories::agree), two_stage_scene(Trajectories::parted)};
+  scenes[1].name = "pile";
+  for (auto& st : scenes[1].stages)
+    for (double& x : st.seconds.numerator) x *= 10;  // a pile ten times dearer changes nothing
+  const Aggregate a = aggregate(scenes, Category::collisions, std::nullopt);
+  EXPECT_EQ(a.scenes, 1);
+  EXPECT_EQ(a.parted, 1);
+  EXPECT_NEAR(a.ratio.ratio, 7.0 / 3.0, kRounding);
+  EXPECT_NEAR(aggregate(scenes, Category::collisions, core::Stage::narrowphase).ratio.ratio, 4.0, kRounding);
+  EXPECT_NEAR(scene_ratio(scenes[1], std::nullopt).ratio, 80.0 / 3.0, kRounding);  // its own, per unit of work
+
+  const nlohmann::ordered_json j = summary_json({{kPairs[0], scenes}}, MachineInfo{}, 2);
+  const auto& c = j["categories"]["collisions"];
+  EXPECT_EQ(c["scenes"], nlohmann::ordered_json::array({"box"}));
+  EXPECT_EQ(c["parted"], nlohmann::ordered_json::array({"pile"}));
+  EXPECT_EQ(c["overall"]["scenes"], 1);
+  EXPECT_EQ(c["overall"]["parted_left_out"], 1);
+  EXPECT_NEAR(c["overall"]["ratio"].get<double>(), 7.0 / 3.0, kRounding);
+
+  // Every scene parted: no ratio and no verdict, and the category still says why.
+  const std::vector<SceneSummary> only = {scenes[1]};
+  const Aggregate none = aggregate(only, Category::collisions, std::nullopt);
+  EXPECT_EQ(none.scenes, 0);
+  EXPECT_EQ(none.parted, 1);
+  EXPECT_EQ(none.verdict, Speed::unknown);
+  const nlohmann::ordered_json k = summary_json({{kPairs[0], only}}, MachineInfo{}, 2);
+  EXPECT_EQ(k["categories"]["collisions"]["overall"]["scenes"], 0);
+  EXPECT_EQ(k["categories"]["collisions"]["parted"], nlohmann::ordered_json::array({"pile"}));
+}
+
 TEST(Summary, AnIntervalFromFiveRepeats) {
   // Five repeats at ratio 2 exactly: interval [2, 2], "cga slower". Four: none.
   SceneSummary s;

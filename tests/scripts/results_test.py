@@ -142,6 +142,18 @@ class SummaryPairs(unittest.TestCase):
         self.assertEqual(summary.label("cga", "traditional-quaternion", block, "collisions"),
                          "cga / traditional-quaternion")
 
+    def test_parted_scenes_are_named_as_left_out(self):
+        """A category's ratio leaves its parted scenes out, and the headline
+        says which; with every scene parted there is no verdict."""
+        block = {"scenes": [], "categories": {"collisions": dict(
+            _category(1.02, 1.0, 1.04, "cga slower", ["drop"]), parted=["box", "pile"])}}
+        self.assertEqual(summary.overall(block, "collisions"),
+                         "1.02 [1.00, 1.04], cga slower (1 scenes; box and pile parted, left out)")
+        block["categories"]["collisions"] = {"evidence": True, "scenes": [], "parted": ["box"],
+                                             "overall": {"ratio": None, "ci95": [None, None],
+                                                         "verdict": "no verdict", "scenes": 0}}
+        self.assertEqual(summary.overall(block, "collisions"), "no verdict: every scene parted; box parted, left out")
+
     def test_a_headline_row_per_pair_and_category(self):
         rows = summary.headline(self.SUMMARY)
         self.assertEqual([(r["finding"], r["value"]) for r in rows], [
