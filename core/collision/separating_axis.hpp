@@ -304,6 +304,16 @@ PairContact separating_axis(const Body& a, const Body& b, bool early_exit = fals
   // them, and boxes meet face to face, where their maps share arcs and every
   // walk ends where it cannot be trusted.
   const bool walk = b.mesh().corners_only() && static_cast<int>(eb.size()) >= kWalkEdges;
+  // The first crossing test below reads each of b's face normals along x.d,
+  // and every face borders several edges (a box's, four): the products are
+  // taken once per face here, not twice per edge of b. y.n0 and y.n1 are
+  // copies of these normals (Shape::build_edges), so each product, and each
+  // answer, is the one the test took per edge.
+  const auto& sides = b.mesh().edge_planes();
+  const int pb = static_cast<int>(b.mesh().planes().size());
+  thread_local std::vector<Vec3> normal_b;
+  thread_local std::vector<double> along;
+  bool normals = false;  // normal_b filled (after a walk, only where one cannot be trusted)
   for (int i = 0; i < static_cast<int>(ea.size()); ++i) {
     const ShapeEdge& x = ea[i];
     const Vec3 q = x.p - delta;
@@ -312,6 +322,12 @@ PairContact separating_axis(const Body& a, const Body& b, bool early_exit = fals
       if (walked < 0) return done();
       if (walked > 0) continue;
     }
+    if (!normals) {
+      normal_b.resize(static_cast<std::size_t>(pb)), along.resize(static_cast<std::size_t>(pb));
+      for (int k = 0; k < pb; ++k) normal_b[static_cast<std::size_t>(k)] = b.normal(k);
+      normals = true;
+    }
+    for (int k = 0; k < pb; ++k) along[static_cast<std::size_t>(k)] = normal_b[static_cast<std::size_t>(k)].dot(x.d);
     for (int j = 0; j < static_cast<int>(eb.size()); ++j) {
       // spans_minkowski_face here, where it rejects most pairs without a
       // call, with its signs taken out (exact: a negation rounds nothing):
@@ -319,8 +335,9 @@ PairContact separating_axis(const Body& a, const Body& b, bool early_exit = fals
       // d × c = −y.d. Nearly aligned boxes (a stack) pass the first test
       // about half the time, the whole test far less often.
       const ShapeEdge& y = eb[j];
-      const double cba = y.n0.dot(x.d);
-      if (!(cba * y.n1.dot(x.d) < 0)) continue;
+      const auto& side = sides[static_cast<std::size_t>(j)];
+      const double cba = along[static_cast<std::size_t>(side[0])];
+      if (!(cba * along[static_cast<std::size_t>(side[1])] < 0)) continue;
       const double ady = x.n0.dot(y.d), bdy = x.n1.dot(y.d);
       if (!(ady * bdy < 0 && cba * bdy < 0)) continue;
       if (edge_gap(i, j, x, q, y)) return done();
