@@ -307,7 +307,13 @@ StackVerdict StackCase::evaluate(const Run& run) const {
       const double above = off.z() - rounding, sunk = low - b.position.z() - rounding;
       std::snprintf(value, sizeof value, ": %.6g m (rest %.6g, %d contacts below)", b.position.z(), rest[k].z(), below[k]);
       if (above > 0) note(1 + above / tol, 1, cat(at(scene.bodies[k].name, s.t), " floats above its rest", value));
-      if (sunk > 0) note(1 + sunk / tol, 1, cat(at(scene.bodies[k].name, s.t), " sank below its rest", value));
+      // A body more than its own size below its rest has not sunk into its
+      // support: it came off it (slid off a frictionless column and the
+      // slab's edge, and fell), and the message says so.
+      const double rim = rim_radius(scene.bodies[k].shape);
+      const bool fell = rim > 0 && sunk > 2 * rim;
+      if (sunk > 0)
+        note(1 + sunk / tol, 1, cat(at(scene.bodies[k].name, s.t), fell ? " fell off its support" : " sank below its rest", value));
     }
   return v;
 }
