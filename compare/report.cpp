@@ -578,12 +578,12 @@ SummaryParts summary_parts(const std::vector<SceneResult>& results, const std::v
         << (compared_here ? to_string(s.trajectories) : md_text("not compared: " + s.not_compared_why)) << " |\n";
     }
   o << "\nRatios are of the mean time per repeat, whole run; where the trajectories parted, per unit of each "
-       "stage's work (below), and left out of the category's ratios. Apart: the largest distance between the two backends' particles and bodies' centres "
-       "of mass, and angle between their bodies' orientations, over all samples. Tolerance d: the scene's "
-       "`check.max_divergence`, or on a collision scene its penetration tolerance where that is smaller. Within "
-       "it: every position within d and every moving body's orientation within d / r (r the body's radius: a "
-       "turn by d / r moves none of its points further than d), the bounds `check` applies between backends. No "
-       "agreement is claimed beyond it.\n";
+       "stage's work (below), and left out of the category's ratios. Apart: the largest distance between the two "
+       "backends' particles and bodies' centres of mass, and angle between their bodies' orientations, over all "
+       "samples. Tolerance d: the scene's `check.max_divergence`, or on a collision scene its penetration "
+       "tolerance where that is smaller. Within it: every position within d and every moving body's orientation "
+       "within d / r (r the body's radius: a turn by d / r moves none of its points further than d), the bounds "
+       "`check` applies between backends. No agreement is claimed beyond it.\n";
   for (std::size_t k = 0; k < pairs.size(); ++k) category_tables(o, pairs[k], repeats, k == 0);
   parts.tables = o.str();
   return parts;

@@ -74,8 +74,9 @@ Tolerance agreement_tolerance(const core::Scene& scene);
 // moving body's orientation within d / r (tolerance_used ≤ 1); parted ("parted
 // (chaotic)"): further apart (chaos amplifies the backends' different
 // rounding, as in bodies_in_box: the runs then do different work, are left
-// out of their category's ratios and compared on their own per unit of work); not_compared: not both backends of the pair ran
-// to the end; own_settings: each backend ran at its own solver setting
+// out of their category's ratios and compared on their own per unit of
+// work); not_compared: not both backends of the pair ran to the end;
+// own_settings: each backend ran at its own solver setting
 // (`compare --accuracy`), so they differ by design, are neither classified
 // nor compared per unit of work. NaN (a blown-up run) is parted.
 enum class Trajectories { identical, agree, parted, own_settings, not_compared };
