@@ -429,9 +429,8 @@ void verdict(std::ostringstream& o, const std::vector<PairSummaries>& pairs) {
     std::vector<std::string> parts;
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       const Aggregate& a = per_pair[i];
-      std::vector<std::string> parted;
-      for (const auto& s : pairs[i].scenes)
-        if (s.category == c && s.trajectories == Trajectories::parted) parted.push_back(md_text(s.name));
+      std::vector<std::string> parted = parted_scenes(pairs[i].scenes, c);
+      for (auto& name : parted) name = md_text(name);
       const std::string left_out = parted.empty() ? "" : " (" + and_list(parted) + " parted, left out)";
       if (a.scenes == 0) {
         if (!parted.empty()) parts.push_back("no verdict, " + pair_words(pairs[i], c) + ": every scene parted" + left_out);

@@ -276,6 +276,13 @@ Aggregate aggregate(const std::vector<SceneSummary>& scenes, Category c, std::op
   return a;
 }
 
+std::vector<std::string> parted_scenes(const std::vector<SceneSummary>& scenes, Category c) {
+  std::vector<std::string> out;
+  for (const auto& s : scenes)
+    if (s.category == c && s.trajectories == Trajectories::parted) out.push_back(s.name);
+  return out;
+}
+
 namespace {
 // One pair's "scenes" and "categories" (summary.hpp).
 json pair_json(const PairSummaries& ps) {
@@ -323,9 +330,9 @@ json pair_json(const PairSummaries& ps) {
   for (const Category c : kCategories) {
     const Aggregate overall = aggregate(ps.scenes, c, std::nullopt);
     if (overall.scenes == 0 && overall.parted == 0) continue;
-    json names = json::array(), parted = json::array();
+    json names = json::array();
     for (const auto& s : ps.scenes)
-      if (s.category == c) (s.trajectories == Trajectories::parted ? parted : names).push_back(s.name);
+      if (s.category == c && s.trajectories != Trajectories::parted) names.push_back(s.name);
     json stages = json::object();
     for (int k = 0; k < core::kStageCount; ++k) {
       const auto stage = static_cast<Stage>(k);
@@ -334,7 +341,7 @@ json pair_json(const PairSummaries& ps) {
     }
     categories[to_string(c)] = {{"evidence", is_evidence(c)},
                                 {"scenes", names},
-                                {"parted", parted},
+                                {"parted", parted_scenes(ps.scenes, c)},
                                 {"overall", interval_json(overall, p)},
                                 {"stages", stages}};
   }

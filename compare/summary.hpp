@@ -170,6 +170,9 @@ struct Aggregate {
   Speed verdict = Speed::unknown;
 };
 Aggregate aggregate(const std::vector<SceneSummary>& scenes, Category c, std::optional<core::Stage> stage);
+// The names of category c's scenes whose backends parted, in order: those
+// aggregate leaves out.
+std::vector<std::string> parted_scenes(const std::vector<SceneSummary>& scenes, Category c);
 
 // DIR/summary.json: {"tool", "machine", "repeats", "method": {how the ratios
 // and intervals are computed}, "scenes": [...], "categories": {name: {"evidence",
