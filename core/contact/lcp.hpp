@@ -60,8 +60,8 @@ struct Blcp {
   // Optional: A's factor by body, A = G Gᵀ, a row per row of A and at most
   // six columns per body (G = J M^-½ in some basis of each body's motions).
   // Given, a free system of at least augmented_from rows is factorised as
-  // the augmented system [I Gᵀ; G −δ] (lcp.cpp), whose factor has far fewer
-  // entries than A's where rows share bodies many at a time (a stack).
+  // the augmented system [I Gᵀ; G −δ] (lcp.cpp) where that holds fewer
+  // entries than A_FF: where rows share bodies many at a time (a stack).
   Eigen::SparseMatrix<double, Eigen::RowMajor> G;
 };
 
@@ -76,6 +76,10 @@ struct BlcpSettings {
   // (5 layers, ~580 rows: 0.28 s per simulated second either way; 7 layers,
   // ~1,650 rows: 0.88 s factorising A, 0.56 s the augmented system).
   int augmented_from = 500;
+  // Of those, only the ones whose augmented matrix holds fewer entries than
+  // A_FF (a stack's, not a pile's: lcp.cpp, FreeSystem); false: all of them
+  // (the tests compare the two forms on the same systems).
+  bool augment_by_entries = true;
 };
 
 struct BlcpResult {

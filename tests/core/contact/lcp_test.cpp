@@ -554,6 +554,7 @@ int agree_on_pyramid(std::uint64_t perturb) {
     const double scale = 1 + p.A.coeffs().cwiseAbs().maxCoeff();
     BlcpSettings augmented, row_space;
     augmented.augmented_from = 0;
+    augmented.augment_by_entries = false;
     row_space.augmented_from = static_cast<int>(n) + 1;
     Eigen::VectorXd x_aug = Eigen::VectorXd::Zero(n), x_row = x_aug;
     const BlcpResult ra = solve_blcp(p, x_aug, augmented), rr = solve_blcp(p, x_row, row_space);
@@ -584,6 +585,74 @@ TEST(Blcp, DegenerateCyclesEnd) {
   int held = 0;
   for (const std::uint64_t perturb : {1, 2, 3}) held += agree_on_pyramid(perturb);
   EXPECT_GT(held, 0);  // the family does cycle: the guard was needed
+}
+
+// A pile's factor by body: each of `bodies` bodies touches the next at two
+// points (a chain, about four rows a body), seeded random G entries, six
+// columns a body.
+Eigen::SparseMatrix<double, Eigen::RowMajor> chain_factor(int bodies, std::mt19937_64& rng) {
+  std::normal_distribution<double> g;
+  std::vector<Eigen::Triplet<double>> t;
+  int row = 0;
+  for (int b = 0; b + 1 < bodies; ++b)
+    for (int point = 0; point < 2; ++point, ++row)
+      for (const int body : {b, b + 1})
+        for (int c = 0; c < 6; ++c) t.emplace_back(row, 6 * body + c, g(rng));
+  Eigen::SparseMatrix<double, Eigen::RowMajor> f(row, 6 * bodies);
+  f.setFromTriplets(t.begin(), t.end());
+  return f;
+}
+
+// Which free systems are augmented (lcp.cpp, FreeSystem): only those whose
+// augmented matrix holds fewer entries than A_FF. Every row starts free, so
+// the first factorisation is of all of them. The pyramid's cubes carry some
+// twenty rows each (A_FF ~ 20² entries a cube, the augmented ~ 6 · 20): its
+// system is augmented. The chain's bodies carry four (A_FF ~ 16 a body, the
+// augmented ~ 6 · 4 + 6): A's own factor. (Once the pyramid's rows part, a
+// free system of half of them has half the rows a cube, and A_FF the fewer
+// entries.) Forced either way, the chain's answers agree to the tolerances
+// of AugmentedAndRowSpaceFactorisationsAgree.
+TEST(Blcp, TheAugmentedFormIsTakenWhereItHoldsFewerEntries) {
+  std::mt19937_64 rng(20261208);
+  std::normal_distribution<double> g;
+  // Each body's velocity (scaled by M^½): the stack's pressed down, as in
+  // agree_on_pyramid, so that its rows stay free.
+  const auto problem = [&](Eigen::SparseMatrix<double, Eigen::RowMajor> factor, double down) {
+    Blcp p;
+    p.G = std::move(factor);
+    p.A = Eigen::SparseMatrix<double>(p.G) * Eigen::SparseMatrix<double>(p.G).transpose();
+    const auto n = p.A.rows();
+    Eigen::VectorXd v(p.G.cols());
+    for (Eigen::Index c = 0; c < v.size(); ++c) v[c] = c % 6 == 2 ? g(rng) - down : 0.1 * g(rng);
+    p.b = Eigen::SparseMatrix<double>(p.G) * v;
+    p.lo = Eigen::VectorXd::Zero(n);
+    p.hi = Eigen::VectorXd::Constant(n, kInf);
+    return p;
+  };
+  BlcpSettings chosen;
+  chosen.augmented_from = 0;
+  {
+    const Blcp p = problem(pyramid_factor(6), 0.5);
+    Eigen::VectorXd x = Eigen::VectorXd::Ones(p.A.rows());
+    const BlcpResult r = solve_blcp(p, x, chosen);
+    EXPECT_TRUE(r.solved);
+    EXPECT_GT(r.augmented, 0) << r.factorisations << " factorisations, " << r.pivots << " pivots, " << r.updates << " updates";
+  }
+  const Blcp p = problem(chain_factor(400, rng), 0.0);
+  ASSERT_EQ(p.A.rows(), 798);
+  BlcpSettings forced = chosen;
+  forced.augment_by_entries = false;
+  Eigen::VectorXd x_own = Eigen::VectorXd::Ones(p.A.rows()), x_aug = x_own;
+  const BlcpResult own = solve_blcp(p, x_own, chosen), aug = solve_blcp(p, x_aug, forced);
+  EXPECT_TRUE(own.solved);
+  EXPECT_TRUE(aug.solved);
+  EXPECT_GT(own.factorisations, 0);
+  EXPECT_EQ(own.augmented, 0);
+  EXPECT_GT(aug.augmented, 0);
+  const double scale = 1 + p.A.coeffs().cwiseAbs().maxCoeff();
+  EXPECT_LE(blcp_residual(p, x_own), 1e-9 * scale);
+  EXPECT_LE(blcp_residual(p, x_aug), 1e-9 * scale);
+  EXPECT_LE((p.A * x_own - p.A * x_aug).cwiseAbs().maxCoeff(), 1e-8 * scale);
 }
 
 }  // namespace
