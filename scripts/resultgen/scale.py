@@ -4,7 +4,8 @@ cga and Bullet (bench/scale/scale.py), the same boxes with no impact search
 two threads, what the accuracy settings cost on the 10,000-body box
 (bench/scale/settings.py), what the narrowphase's reuse saves
 (bench/scale/reuse.py), what sleeping saves on a settled pile
-(bench/scale/sleep.py) and what a second thread buys (bench/scale/threads.py)."""
+(bench/scale/sleep.py), what a second thread buys (bench/scale/threads.py)
+and what the boxes cost once piled (bench/scale/piled.py)."""
 import json
 import os
 import re
@@ -51,6 +52,9 @@ def generate(ctx):
                                 "--bullet-up-to", "10000"])
     reuse_args = ["--sizes", "125,1000", "--repeat", "1" if ctx.quick else "3", "--duration", "0.2"]
     reuse = strip_command_line(ctx.run(["python3", "bench/scale/reuse.py", "--binary", ctx.gacompare, *reuse_args]))
+    # The boxes' second simulated second, once piled, against their first.
+    piled_args = ["--sizes", "125" if ctx.quick else "125,1000", "--repeat", "1" if ctx.quick else "3"]
+    piled = strip_command_line(ctx.run(["python3", "bench/scale/piled.py", "--binary", ctx.gacompare, *piled_args]))
     sleep_args = ["--sizes", "125,1000", "--repeat", "1" if ctx.quick else "3"]
     sleep = strip_command_line(ctx.run(["python3", "bench/scale/sleep.py", "--binary", ctx.gacompare, *sleep_args]))
     headline = []
@@ -164,6 +168,17 @@ def generate(ctx):
 
     two_threads(threads, "")
     two_threads(threads_unsearched, " without a search")
+    once = {}  # N -> backend -> (second second's median, second / first)
+    for line in piled.splitlines():
+        cols = [c.strip() for c in line.strip("|").split("|")]
+        if len(cols) == 6 and cols[0].isdigit():
+            once.setdefault(int(cols[0]), {})[cols[1]] = (cols[3].split(" ")[0], cols[4])
+    if once:
+        n = max(once)
+        headline.append({"finding": f"{n:,} bodies in a box without a search, once piled: its second simulated "
+                                    "second's time, and that against its first's (one thread)",
+                         "value": ", ".join(f"{b} {t} s ({g}×)" for b, (t, g) in once[n].items()),
+                         "anchor": "#once-piled"})
     asleep = {}  # N -> backend -> settled cost asleep / awake
     for line in sleep.splitlines():
         cols = [c.strip() for c in line.strip("|").split("|")]
@@ -176,5 +191,5 @@ def generate(ctx):
                          "value": ", ".join(f"{b} {r:.1%}" for b, r in asleep[n].items()),
                          "anchor": "#what-sleeping-saves"})
     return {"blocks": {"scale": scale, "scale_unsearched": unsearched, "scale_large": large, "reuse": reuse,
-                       "sleep": sleep, "settings": settings,
+                       "sleep": sleep, "settings": settings, "piled": piled,
                        "threads": threads, "threads_unsearched": threads_unsearched}, "headline": headline}
