@@ -11,6 +11,7 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace gacompare::core::contact {
@@ -198,8 +199,19 @@ class FreeSystem {
     return hit->ldlt;
   }
 
-  // The augmented system [I G_Fᵀ; G_F −D_F] in the workspace (the columns
-  // of G that F's rows touch, in G's order), factorised.
+  // The columns of G that the rows touch: each one's place among them, in
+  // G's order (−1 for the others), and how many.
+  static std::pair<std::vector<int>, int> touched_columns(const Eigen::SparseMatrix<double, Eigen::RowMajor>& g,
+                                                          const std::vector<Eigen::Index>& rows) {
+    std::vector<int> column(static_cast<std::size_t>(g.cols()), -1);
+    for (const Eigen::Index i : rows)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(g, i); it; ++it) column[static_cast<std::size_t>(it.col())] = 0;
+    int c = 0;
+    for (int& k : column)
+      if (k == 0) k = c++;
+    return {std::move(column), c};
+  }
+
   // Whether the augmented system [I Gᵀ; G −δ] is the one to factorise: it
   // holds fewer entries than A_FF (each triangle, the diagonals included).
   // A_FF couples every two rows that share a body, so its entries grow as
@@ -212,27 +224,20 @@ class FreeSystem {
   // some 2,300 rows, the augmented one took 2.3 times as long, and each of
   // its answers is refined against A_FF in several solves besides.
   bool augmenting_pays(const Eigen::SparseMatrix<double, Eigen::RowMajor>& g, const std::vector<Eigen::Index>& rows) const {
-    std::vector<char> seen(static_cast<std::size_t>(g.cols()), 0);
-    Eigen::Index columns = 0, coupling = 0;
+    Eigen::Index coupling = 0;  // G_F's entries
     for (const Eigen::Index i : rows)
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(g, i); it; ++it) {
-        ++coupling;
-        if (!seen[static_cast<std::size_t>(it.col())]) seen[static_cast<std::size_t>(it.col())] = 1, ++columns;
-      }
-    const Eigen::Index augmented = columns + n_ + coupling;      // I, −δ and G's block, one triangle
-    const Eigen::Index own = (a_ff_.nonZeros() + n_) / 2;       // A_FF + δ, one triangle with its diagonal
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(g, i); it; ++it) ++coupling;
+    const Eigen::Index augmented = touched_columns(g, rows).second + n_ + coupling;  // I, −δ and G_F, one triangle
+    const Eigen::Index own = (a_ff_.nonZeros() + n_) / 2;  // A_FF + δ, one triangle with its diagonal
     return augmented < own;
   }
 
+  // The augmented system [I G_Fᵀ; G_F −D_F] in the workspace (the columns
+  // of G that F's rows touch, in G's order), factorised.
   void augment(const Eigen::SparseMatrix<double, Eigen::RowMajor>& g, const std::vector<Eigen::Index>& rows,
                const Eigen::VectorXd& delta) {
     augmented_ = true;
-    std::vector<int> column(static_cast<std::size_t>(g.cols()), -1);
-    for (const Eigen::Index i : rows)
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(g, i); it; ++it) column[static_cast<std::size_t>(it.col())] = 0;
-    int c = 0;
-    for (int& k : column)
-      if (k == 0) k = c++;
+    const auto [column, c] = touched_columns(g, rows);
     columns_ = c;
     std::vector<Eigen::Triplet<double>> t;
     t.reserve(static_cast<std::size_t>(c + n_ + 2 * 12 * n_));
